@@ -1,0 +1,523 @@
+// Copyright (c) 2026 Polycube_IGA contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Surface_topology: the first stage. For a connected, orientable triangle mesh it gives the
+// genus g, the boundary loops b, the Euler characteristic, a homology basis of 2g cycles,
+// and g handle loops and g tunnel loops (reference §2.1.1 and §2.2.1.2).
+//
+// A handle loop bounds a disk inside the solid (a meridian of a handle); a tunnel loop
+// bounds a disk outside it. Only handle loops can become faces between cuboids, so the
+// pants decomposition cuts along them. The classification uses linking numbers (Alexander
+// duality): with the solid I and its complement O, a cycle c on the surface bounds in I iff
+// lk(c, z) = 0 for every cycle z in O, and the outward push-offs b+ of a homology basis b
+// span H1(O). So c = sum x_i b_i is a handle class iff x . L+ = 0 with L+_ij = lk(b_i, b_j+),
+// and a tunnel class iff x . L- = 0 (inward push-offs). Loops with a boundary are
+// classified on the surface closed by caps over its boundary loops.
+//
+// Candidate loops are the shortest loops through a set of roots (Erickson–Whittlesey:
+// a shortest-path tree plus one edge, trimmed at the common ancestor, hence simple), the
+// roots chosen by farthest-point sampling and then refined on the loops found. Greedy
+// selection by length keeps independent classes; the g handle loops are in addition
+// pairwise vertex-disjoint and avoid the boundary, so that cutting along all of them leaves
+// one connected genus-0 surface with 2g+b boundary loops (independent disjoint simple
+// cycles never separate). When a coarse mesh leaves no room for disjoint loops, the mesh is
+// refined at edge midpoints (geometry unchanged) and the search repeated.
+
+#ifndef CGAL_POLYCUBE_IGA_SURFACE_TOPOLOGY_H
+#define CGAL_POLYCUBE_IGA_SURFACE_TOPOLOGY_H
+
+#include <CGAL/Polycube_IGA/Errors.h>
+#include <CGAL/Polycube_IGA/parameters.h>
+#include <CGAL/Polycube_IGA/internal/homology.h>
+#include <CGAL/Polycube_IGA/internal/linking_number.h>
+#include <CGAL/Polycube_IGA/internal/mesh_graph.h>
+#include <CGAL/Polycube_IGA/internal/mesh_refinement.h>
+#include <CGAL/Polycube_IGA/internal/shortest_path_tree.h>
+
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/Named_function_parameters.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+#include <numeric>
+#include <vector>
+
+namespace CGAL {
+namespace Polycube_IGA {
+
+/// \ingroup PkgPolycubeIGARef
+/// A closed loop along mesh edges: vertices in order (the last joins the first).
+template <class TriangleMesh>
+struct Surface_loop
+{
+  using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
+  std::vector<vertex_descriptor> vertices;
+  std::vector<std::array<double, 3>> points; ///< positions of `vertices`
+  double length = 0;                          ///< sum of the edge weights along the loop
+  std::vector<int> homology_class;            ///< coordinates in the tree-cotree basis of H1
+};
+
+/// \ingroup PkgPolycubeIGARef
+/// Result of `Surface_topology`.
+template <class TriangleMesh>
+struct Surface_topology_result
+{
+  using halfedge_descriptor = typename boost::graph_traits<TriangleMesh>::halfedge_descriptor;
+  using Loop = Surface_loop<TriangleMesh>;
+
+  std::size_t number_of_vertices = 0; ///< vertices with at least one incident edge
+  std::size_t number_of_edges = 0;
+  std::size_t number_of_faces = 0;
+  int genus = 0;
+  long euler_characteristic = 0;
+  /// Each boundary loop as its border halfedges, in order (halfedges of the input mesh).
+  std::vector<std::vector<halfedge_descriptor>> boundary_cycles;
+  std::vector<Loop> homology_basis; ///< 2g cycles
+  std::vector<Loop> handle_loops;   ///< g simple, pairwise disjoint, together non-separating
+  std::vector<Loop> tunnel_loops;   ///< g simple, independent
+  /// lk(handle_i, tunnel_j pushed outwards): a unimodular g x g matrix for a genuine pair of bases.
+  std::vector<std::vector<int>> handle_tunnel_linking;
+  /// Midpoint subdivisions that were needed to find disjoint loops. When nonzero, the loops'
+  /// vertices refer to `refined_mesh`, whose first vertices are the input's.
+  int refinements = 0;
+  std::shared_ptr<TriangleMesh> refined_mesh;
+
+  std::size_t number_of_boundary_loops() const { return boundary_cycles.size(); }
+  /// The mesh the loops' vertex descriptors refer to.
+  const TriangleMesh& loop_mesh(const TriangleMesh& input) const { return refinements ? *refined_mesh : input; }
+};
+
+/*!
+ * \ingroup PkgPolycubeIGARef
+ * Function object computing the topology of a connected, orientable triangle mesh: genus,
+ * boundary loops, homology basis, handle and tunnel loops. `TriangleMesh` is a model of
+ * `FaceListGraph` and `MutableFaceGraph` (the latter only used when a refinement is needed).
+ *
+ * \cgalNamedParamsBegin
+ *   \cgalParamNBegin{vertex_point_map}
+ *     \cgalParamDefault{`get(CGAL::vertex_point, tm)`}
+ *   \cgalParamNEnd
+ *   \cgalParamNBegin{loop_edge_weight}
+ *     \cgalParamDescription{readable property map edge_descriptor -> double (>= 0): the
+ *       metric in which loops are short}
+ *     \cgalParamDefault{Euclidean edge length}
+ *   \cgalParamNEnd
+ *   \cgalParamNBegin{number_of_roots}
+ *     \cgalParamDescription{roots of shortest-path trees sampled (farthest-point) for candidate loops}
+ *     \cgalParamDefault{`16`}
+ *   \cgalParamNEnd
+ *   \cgalParamNBegin{compute_tunnel_loops}
+ *     \cgalParamDefault{`true`}
+ *   \cgalParamNEnd
+ *   \cgalParamNBegin{maximum_refinements}
+ *     \cgalParamDescription{midpoint subdivisions allowed when disjoint handle loops do not fit}
+ *     \cgalParamDefault{`3`}
+ *   \cgalParamNEnd
+ * \cgalNamedParamsEnd
+ *
+ * Throws `Invalid_input_error` (`multiple_components`, `empty`, `invalid_edge_weight`) and
+ * `Internal_error` (`loop_search_failed`, `handle_tunnel_classification_failed`).
+ */
+template <class TriangleMesh>
+class Surface_topology
+{
+public:
+  using Result = Surface_topology_result<TriangleMesh>;
+  using GT = boost::graph_traits<TriangleMesh>;
+  using vertex_descriptor = typename GT::vertex_descriptor;
+  using halfedge_descriptor = typename GT::halfedge_descriptor;
+  using edge_descriptor = typename GT::edge_descriptor;
+
+  template <class NamedParameters = parameters::Default_named_parameters>
+  Result operator()(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values()) const
+  {
+    using CGAL::parameters::choose_parameter;
+    using CGAL::parameters::get_parameter;
+    auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, tm));
+    const int number_of_roots = std::max(1, int(option(np, internal_np::number_of_roots, 16)));
+    const bool tunnels = option(np, internal_np::compute_tunnel_loops, true);
+    const int max_refinements = std::max(0, int(option(np, internal_np::maximum_refinements, 3)));
+    auto weight_map = get_parameter(np, internal_np::loop_edge_weight);
+    constexpr bool has_weights = !std::is_same<decltype(weight_map), CGAL::internal_np::Param_not_found>::value;
+
+    Result result;
+    if(num_faces(tm) == 0) throw Invalid_input_error("empty", "the mesh has no faces");
+    internal::Mesh_graph<TriangleMesh> graph(tm, vpm);
+    count_and_check(graph, tm, result);
+    if(result.genus == 0) return result; // no non-trivial loop exists: nothing to search
+
+    // Loops are searched on the input, or on its midpoint refinements when they do not fit.
+    const TriangleMesh* mesh = &tm;
+    std::unique_ptr<internal::Mesh_graph<TriangleMesh>> refined_graph;
+    for(int attempt = 0;; ++attempt) {
+      const auto& g = refined_graph ? *refined_graph : graph;
+      // A user's weight map knows the input's edges only: refined meshes use lengths.
+      std::vector<double> w = refined_graph
+        ? edge_weights(g, *mesh, weight_map, std::false_type())
+        : edge_weights(g, *mesh, weight_map, std::integral_constant<bool, has_weights>());
+      if(search_loops(g, w, result, number_of_roots, tunnels)) break;
+      if(attempt == max_refinements)
+        throw Internal_error("loop_search_failed",
+                             "no set of " + std::to_string(result.genus) +
+                             " disjoint handle loops found, even after " + std::to_string(max_refinements) +
+                             " refinements of the mesh");
+      if(!result.refined_mesh) result.refined_mesh = std::make_shared<TriangleMesh>(tm);
+      auto rvpm = get(CGAL::vertex_point, *result.refined_mesh);
+      internal::subdivide_at_edge_midpoints(*result.refined_mesh, rvpm);
+      result.refinements = attempt + 1;
+      mesh = result.refined_mesh.get();
+      refined_graph.reset(new internal::Mesh_graph<TriangleMesh>(*mesh, rvpm));
+    }
+    return result;
+  }
+
+private:
+  using Graph = internal::Mesh_graph<TriangleMesh>;
+
+  struct Candidate
+  {
+    double length;
+    std::vector<int> vertices, edges;
+    internal::Homology_class cls;
+    bool touches_border;
+  };
+
+  static void count_and_check(const Graph& g, const TriangleMesh& tm, Result& r)
+  {
+    // Connectivity over the edge graph; isolated vertices are ignored.
+    const int nv = g.number_of_vertices();
+    std::vector<int> comp(nv, -1);
+    int components = 0;
+    std::size_t used_vertices = 0;
+    for(int s = 0; s < nv; ++s) {
+      if(comp[s] != -1 || g.offset[s] == g.offset[s + 1]) continue;
+      ++components;
+      std::vector<int> stack{s};
+      comp[s] = s;
+      while(!stack.empty()) {
+        int v = stack.back(); stack.pop_back();
+        ++used_vertices;
+        for(int k = g.offset[v]; k < g.offset[v + 1]; ++k)
+          if(comp[g.adjacent_vertex[k]] == -1) { comp[g.adjacent_vertex[k]] = s; stack.push_back(g.adjacent_vertex[k]); }
+      }
+    }
+    if(components > 1)
+      throw Invalid_input_error("multiple_components",
+                                "the mesh has " + std::to_string(components) + " connected components; one solid is expected");
+    r.number_of_vertices = used_vertices;
+    r.number_of_edges = std::size_t(g.number_of_edges());
+    r.number_of_faces = std::size_t(g.number_of_faces());
+    r.euler_characteristic = long(used_vertices) - long(r.number_of_edges) + long(r.number_of_faces);
+    const long b = long(g.border_cycles.size());
+    const long twice_genus = 2 - r.euler_characteristic - b;
+    if(twice_genus < 0 || twice_genus % 2 != 0)
+      throw Invalid_input_error("non_manifold_vertex", "the Euler characteristic (" +
+                                std::to_string(r.euler_characteristic) + ") and " + std::to_string(b) +
+                                " boundary loops fit no orientable surface: the mesh is not a manifold");
+    r.genus = int(twice_genus / 2);
+    for(const auto& cycle : g.border_cycles) {
+      r.boundary_cycles.emplace_back();
+      for(int e : cycle) {
+        halfedge_descriptor h = g.edge_halfedge[e];
+        if(!is_border(h, tm)) h = opposite(h, tm);
+        r.boundary_cycles.back().push_back(h);
+      }
+    }
+  }
+
+  template <class WeightMap>
+  static std::vector<double> edge_weights(const Graph& g, const TriangleMesh& tm, const WeightMap& wm, std::true_type)
+  {
+    std::vector<double> w(g.number_of_edges());
+    for(int e = 0; e < g.number_of_edges(); ++e) {
+      w[e] = double(get(wm, edge(g.edge_halfedge[e], tm)));
+      if(!(w[e] >= 0) || !std::isfinite(w[e]))
+        throw Invalid_input_error("invalid_edge_weight", "loop_edge_weight must be finite and non-negative");
+    }
+    return w;
+  }
+  template <class WeightMap>
+  static std::vector<double> edge_weights(const Graph& g, const TriangleMesh&, const WeightMap&, std::false_type)
+  {
+    std::vector<double> w(g.number_of_edges());
+    for(int e = 0; e < g.number_of_edges(); ++e) w[e] = g.length(e);
+    return w;
+  }
+
+  // Shortest loops through `root`, one per distinct non-trivial class (the shortest),
+  // the `keep` shortest of them, plus the loops of `always` (edges) when given.
+  static void loops_through_root(const Graph& g, const std::vector<double>& w,
+                                 const internal::Homology_coordinates<Graph>& H,
+                                 const internal::Shortest_path_tree& t, std::size_t keep,
+                                 const std::vector<int>& always, std::vector<Candidate>& out)
+  {
+    const int d = H.dimension(), nv = g.number_of_vertices();
+    std::vector<int> P(std::size_t(nv) * d, 0);
+    for(int v : t.order) {
+      const int pe = t.parent_edge[v];
+      if(pe < 0) continue;
+      const int u = g.other_vertex(pe, v);
+      const int s = g.direction(pe, u);
+      const int* hp = H.at(pe);
+      for(int k = 0; k < d; ++k) P[std::size_t(v) * d + k] = P[std::size_t(u) * d + k] + s * hp[k];
+    }
+    std::map<internal::Homology_class, std::pair<double, int>> best; // class -> (length, edge)
+    internal::Homology_class c(d);
+    for(int e = 0; e < g.number_of_edges(); ++e) {
+      const int a = g.edge_vertices[e][0], b = g.edge_vertices[e][1];
+      if(t.parent_edge[a] == e || t.parent_edge[b] == e) continue;
+      if(!std::isfinite(t.distance[a]) || !std::isfinite(t.distance[b])) continue;
+      const int* he = H.at(e);
+      bool zero = true;
+      for(int k = 0; k < d; ++k) {
+        c[k] = P[std::size_t(a) * d + k] + he[k] - P[std::size_t(b) * d + k];
+        zero = zero && c[k] == 0;
+      }
+      if(zero) continue;
+      const double len = t.distance[a] + w[e] + t.distance[b];
+      // A class and its opposite are the same loop reversed.
+      internal::Homology_class key = c;
+      for(int k = 0; k < d; ++k) if(key[k] != 0) { if(key[k] < 0) for(int& x : key) x = -x; break; }
+      auto it = best.find(key);
+      if(it == best.end() || len < it->second.first) best[key] = {len, e};
+    }
+    std::vector<std::pair<double, int>> chosen;
+    for(const auto& kv : best) chosen.push_back(kv.second);
+    std::sort(chosen.begin(), chosen.end());
+    if(chosen.size() > keep) chosen.resize(keep);
+    for(int e : always) chosen.push_back({0.0, e});
+    for(const auto& [len, e] : chosen) {
+      Candidate cand;
+      cand.vertices = internal::tree_loop(g, t, e, &cand.edges);
+      cand.length = 0;
+      for(int x : cand.edges) cand.length += w[x];
+      cand.cls = H.class_of_loop(cand.vertices, cand.edges);
+      cand.touches_border = false;
+      for(int v : cand.vertices) cand.touches_border = cand.touches_border || g.is_border_vertex[v];
+      out.push_back(std::move(cand));
+    }
+  }
+
+  static std::vector<Eigen::Vector3d> push_off(const Graph& g, const std::vector<int>& loop,
+                                               const std::vector<Eigen::Vector3d>& normals,
+                                               const std::vector<double>& step, double side)
+  {
+    std::vector<Eigen::Vector3d> p;
+    p.reserve(loop.size());
+    for(int v : loop) p.push_back(g.position[v] + side * step[v] * normals[v]);
+    return p;
+  }
+
+  static std::vector<Eigen::Vector3d> positions(const Graph& g, const std::vector<int>& loop)
+  {
+    std::vector<Eigen::Vector3d> p;
+    for(int v : loop) p.push_back(g.position[v]);
+    return p;
+  }
+
+  // Linking matrices of the basis with its outward (+) and inward (-) push-offs. Returns
+  // false when the numbers are not integers (push-off crossing the surface elsewhere).
+  static bool linking_matrices(const Graph& g, const std::vector<const Candidate*>& basis,
+                               const std::vector<Eigen::Vector3d>& normals, const std::vector<double>& step,
+                               double outward, Eigen::MatrixXd& Lp, Eigen::MatrixXd& Lm)
+  {
+    const int n = int(basis.size());
+    Lp.resize(n, n); Lm.resize(n, n);
+    std::vector<std::vector<Eigen::Vector3d>> on(n), plus(n), minus(n);
+    for(int i = 0; i < n; ++i) {
+      on[i] = positions(g, basis[i]->vertices);
+      plus[i] = push_off(g, basis[i]->vertices, normals, step, outward);
+      minus[i] = push_off(g, basis[i]->vertices, normals, step, -outward);
+    }
+    for(int i = 0; i < n; ++i)
+      for(int j = 0; j < n; ++j) {
+        const double p = internal::gauss_linking_number(on[i], plus[j]);
+        const double m = internal::gauss_linking_number(on[i], minus[j]);
+        if(std::abs(p - std::round(p)) > 0.1 || std::abs(m - std::round(m)) > 0.1) return false;
+        Lp(i, j) = std::round(p);
+        Lm(i, j) = std::round(m);
+      }
+    return true;
+  }
+
+  static bool search_loops(const Graph& g, const std::vector<double>& w, Result& result,
+                           int number_of_roots, bool want_tunnels)
+  {
+    const int genus = result.genus, nv = g.number_of_vertices();
+    // Root 0: the first non-border vertex with an edge (deterministic).
+    int root0 = -1;
+    for(int v = 0; v < nv && root0 < 0; ++v)
+      if(g.offset[v] < g.offset[v + 1] && !g.is_border_vertex[v]) root0 = v;
+    if(root0 < 0) root0 = 0;
+    internal::Shortest_path_tree t0 = internal::shortest_path_tree(g, root0, w);
+    std::vector<double> priority(g.number_of_edges());
+    for(int e = 0; e < g.number_of_edges(); ++e)
+      priority[e] = t0.distance[g.edge_vertices[e][0]] + w[e] + t0.distance[g.edge_vertices[e][1]];
+    internal::Homology_coordinates<Graph> H(g, t0, priority);
+    if(H.dimension() != 2 * genus)
+      throw Internal_error("loop_search_failed", "tree-cotree found " + std::to_string(H.dimension()) +
+                                                 " generators for genus " + std::to_string(genus));
+
+    // Candidates from farthest-point-sampled roots.
+    std::vector<Candidate> candidates;
+    const std::size_t keep = std::size_t(8 * genus + 8);
+    std::vector<double> nearest(t0.distance);
+    loops_through_root(g, w, H, t0, keep, H.generators(), candidates);
+    for(int r = 1; r < number_of_roots; ++r) {
+      int far = -1;
+      double far_d = -1;
+      for(int v = 0; v < nv; ++v)
+        if(std::isfinite(nearest[v]) && nearest[v] > far_d) { far_d = nearest[v]; far = v; }
+      if(far < 0 || far_d <= 0) break;
+      internal::Shortest_path_tree t = internal::shortest_path_tree(g, far, w);
+      for(int v = 0; v < nv; ++v) nearest[v] = std::min(nearest[v], t.distance[v]);
+      loops_through_root(g, w, H, t, keep, {}, candidates);
+    }
+
+    const double outward = g.capped_signed_volume() >= 0 ? 1.0 : -1.0;
+    const std::vector<Eigen::Vector3d> normals = g.vertex_push_directions();
+    std::vector<double> step(nv, std::numeric_limits<double>::infinity());
+    for(int e = 0; e < g.number_of_edges(); ++e) {
+      const double l = g.length(e);
+      for(int v : g.edge_vertices[e]) step[v] = std::min(step[v], 0.05 * l);
+    }
+
+    // Two rounds: the second adds roots on the loops the first one chose, where the
+    // shortest loops of those classes pass.
+    Selection sel;
+    for(int round = 0; round < 2; ++round) {
+      std::stable_sort(candidates.begin(), candidates.end(),
+                       [](const Candidate& a, const Candidate& b) { return a.length < b.length; });
+      sel = select(g, candidates, genus, want_tunnels, normals, step, outward);
+      if(!sel.ok) return false;
+      if(round == 1) break;
+      std::vector<int> roots;
+      auto add_roots = [&](const std::vector<const Candidate*>& loops) {
+        for(const Candidate* c : loops)
+          for(int k = 0; k < 3; ++k) roots.push_back(c->vertices[c->vertices.size() * k / 3]);
+      };
+      add_roots(sel.handles);
+      add_roots(sel.tunnels);
+      std::sort(roots.begin(), roots.end());
+      roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
+      std::vector<Candidate> more;
+      for(int r : roots) loops_through_root(g, w, H, internal::shortest_path_tree(g, r, w), keep, {}, more);
+      for(auto& c : more) candidates.push_back(std::move(c));
+    }
+
+    auto to_loop = [&](const Candidate& c) {
+      Surface_loop<TriangleMesh> loop;
+      for(int v : c.vertices) {
+        loop.vertices.push_back(g.vertex[v]);
+        const Eigen::Vector3d& p = g.position[v];
+        loop.points.push_back({p.x(), p.y(), p.z()});
+      }
+      loop.length = c.length;
+      loop.homology_class = c.cls;
+      return loop;
+    };
+    result.homology_basis.clear(); result.handle_loops.clear(); result.tunnel_loops.clear();
+    for(const Candidate* c : sel.basis) result.homology_basis.push_back(to_loop(*c));
+    for(const Candidate* c : sel.handles) result.handle_loops.push_back(to_loop(*c));
+    for(const Candidate* c : sel.tunnels) result.tunnel_loops.push_back(to_loop(*c));
+    result.handle_tunnel_linking.assign(sel.handles.size(), std::vector<int>(sel.tunnels.size(), 0));
+    for(std::size_t i = 0; i < sel.handles.size(); ++i)
+      for(std::size_t j = 0; j < sel.tunnels.size(); ++j)
+        result.handle_tunnel_linking[i][j] = int(std::lround(internal::gauss_linking_number(
+          positions(g, sel.handles[i]->vertices), push_off(g, sel.tunnels[j]->vertices, normals, step, outward))));
+    return true;
+  }
+
+  struct Selection
+  {
+    bool ok = false;
+    std::vector<const Candidate*> basis, handles, tunnels;
+  };
+
+  static Selection select(const Graph& g, const std::vector<Candidate>& candidates, int genus, bool want_tunnels,
+                          const std::vector<Eigen::Vector3d>& normals, std::vector<double> step, double outward)
+  {
+    Selection s;
+    const int d = 2 * genus;
+    internal::Independence_tracker basis_rank(d);
+    for(const Candidate& c : candidates)
+      if(basis_rank.insert(c.cls)) { s.basis.push_back(&c); if(basis_rank.rank() == d) break; }
+    if(basis_rank.rank() != d)
+      throw Internal_error("loop_search_failed", "candidate loops do not span the homology");
+
+    // Linking matrices; a push-off that crosses the surface gives non-integers: shrink it.
+    Eigen::MatrixXd Lp, Lm;
+    bool linked = false;
+    for(int tries = 0; tries < 4 && !linked; ++tries) {
+      linked = linking_matrices(g, s.basis, normals, step, outward, Lp, Lm);
+      if(!linked) for(double& x : step) x *= 0.25;
+    }
+    Eigen::MatrixXd B(d, d);
+    for(int i = 0; i < d; ++i) for(int k = 0; k < d; ++k) B(i, k) = s.basis[i]->cls[k];
+    Eigen::FullPivLU<Eigen::MatrixXd> lu_p(Lp), lu_m(Lm), lu_i(Lp - Lm);
+    if(!linked || lu_p.rank() != genus || lu_m.rank() != genus || lu_i.rank() != d)
+      throw Internal_error("handle_tunnel_classification_failed",
+                           "linking numbers of the homology basis are inconsistent (is the surface "
+                           "self-intersecting or are normals inconsistent?)");
+    // Class y (tree-cotree coordinates) -> coefficients x = y B^-1; handle iff x Lp = 0.
+    const Eigen::MatrixXd Binv = B.inverse();
+    const Eigen::MatrixXd Kp = Binv * Lp, Km = Binv * Lm;
+    auto in_kernel = [&](const Candidate& c, const Eigen::MatrixXd& K) {
+      Eigen::RowVectorXd y(d);
+      for(int k = 0; k < d; ++k) y(k) = c.cls[k];
+      return (y * K).cwiseAbs().maxCoeff() < 1e-6;
+    };
+
+    std::vector<char> used(g.number_of_vertices(), 0);
+    auto disjoint = [&](const Candidate& c) {
+      for(int v : c.vertices) if(used[v]) return false;
+      return true;
+    };
+    internal::Independence_tracker handle_rank(d);
+    for(const Candidate& c : candidates) {
+      if(int(s.handles.size()) == genus) break;
+      if(c.touches_border || !disjoint(c) || !in_kernel(c, Kp) || !handle_rank.is_independent(c.cls)) continue;
+      handle_rank.insert(c.cls);
+      s.handles.push_back(&c);
+      for(int v : c.vertices) used[v] = 1;
+    }
+    if(int(s.handles.size()) < genus) return s;
+
+    if(want_tunnels) {
+      // Prefer pairwise disjoint tunnel loops; fill up with overlapping ones if needed.
+      std::fill(used.begin(), used.end(), 0);
+      internal::Independence_tracker tunnel_rank(d);
+      for(int pass = 0; pass < 2 && int(s.tunnels.size()) < genus; ++pass)
+        for(const Candidate& c : candidates) {
+          if(int(s.tunnels.size()) == genus) break;
+          if((pass == 0 && !disjoint(c)) || !in_kernel(c, Km) || !tunnel_rank.is_independent(c.cls)) continue;
+          tunnel_rank.insert(c.cls);
+          s.tunnels.push_back(&c);
+          for(int v : c.vertices) used[v] = 1;
+        }
+      if(int(s.tunnels.size()) < genus) return s;
+    }
+    s.ok = true;
+    return s;
+  }
+};
+
+/// \ingroup PkgPolycubeIGARef
+/// Convenience: `Surface_topology<TriangleMesh>()(tm, np)`.
+template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
+Surface_topology_result<TriangleMesh> surface_topology(const TriangleMesh& tm,
+                                                       const NamedParameters& np = parameters::default_values())
+{
+  return Surface_topology<TriangleMesh>()(tm, np);
+}
+
+} // namespace Polycube_IGA
+} // namespace CGAL
+
+#endif // CGAL_POLYCUBE_IGA_SURFACE_TOPOLOGY_H

@@ -1,0 +1,79 @@
+// Copyright (c) 2026 Polycube_IGA contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Named parameters of the package, in CGAL's style. CGAL 5.5's list of tags is closed,
+// so the package's own tags live here, in a parameter class that derives from CGAL's:
+// our options chain with each other and with CGAL's built-in ones, e.g.
+//
+//   namespace PIP = CGAL::Polycube_IGA::parameters;
+//   PIP::merge_duplicate_vertices(true).remove_isolated_vertices(true).vertex_point_map(vpm)
+//
+// Our options must come before CGAL's in a chain (CGAL's members return CGAL's class).
+
+#ifndef CGAL_POLYCUBE_IGA_PARAMETERS_H
+#define CGAL_POLYCUBE_IGA_PARAMETERS_H
+
+#include <CGAL/Named_function_parameters.h>
+
+namespace CGAL {
+namespace Polycube_IGA {
+
+// The package's options: (tag, function name). One line per option.
+#define CGAL_POLYCUBE_IGA_NAMED_PARAMETERS(X)                                        \
+  /* reading and validation */                                                      \
+  X(merge_duplicate_vertices_t, merge_duplicate_vertices)                           \
+  X(remove_isolated_vertices_t, remove_isolated_vertices)                           \
+  X(check_self_intersections_t, check_self_intersections)                           \
+  X(maximum_examples_t, maximum_examples)                                           \
+  /* topology */                                                                    \
+  X(loop_edge_weight_t, loop_edge_weight)                                           \
+  X(number_of_roots_t, number_of_roots)                                             \
+  X(compute_tunnel_loops_t, compute_tunnel_loops)                                   \
+  X(maximum_refinements_t, maximum_refinements)
+
+namespace internal_np {
+#define CGAL_POLYCUBE_IGA_DECLARE_TAG(TAG, NAME) enum TAG { NAME };
+CGAL_POLYCUBE_IGA_NAMED_PARAMETERS(CGAL_POLYCUBE_IGA_DECLARE_TAG)
+#undef CGAL_POLYCUBE_IGA_DECLARE_TAG
+} // namespace internal_np
+
+/// Parameter pack carrying the package's options; usable wherever CGAL expects named parameters.
+template <typename T, typename Tag, typename Base = CGAL::internal_np::No_property>
+struct Named_parameters : CGAL::Named_function_parameters<T, Tag, Base>
+{
+  using CGAL::Named_function_parameters<T, Tag, Base>::Named_function_parameters;
+  using self = Named_parameters<T, Tag, Base>;
+
+#define CGAL_POLYCUBE_IGA_MEMBER(TAG, NAME)                                          \
+  template <typename K>                                                             \
+  Named_parameters<K, internal_np::TAG, self> NAME(const K& k) const                \
+  { return Named_parameters<K, internal_np::TAG, self>(k, *this); }
+  CGAL_POLYCUBE_IGA_NAMED_PARAMETERS(CGAL_POLYCUBE_IGA_MEMBER)
+#undef CGAL_POLYCUBE_IGA_MEMBER
+};
+
+namespace parameters {
+
+using CGAL::parameters::default_values;
+using CGAL::parameters::Default_named_parameters;
+
+#define CGAL_POLYCUBE_IGA_FREE_FUNCTION(TAG, NAME)                                   \
+  template <typename K>                                                             \
+  Named_parameters<K, internal_np::TAG> NAME(const K& k)                            \
+  { return Named_parameters<K, internal_np::TAG>(k); }
+CGAL_POLYCUBE_IGA_NAMED_PARAMETERS(CGAL_POLYCUBE_IGA_FREE_FUNCTION)
+#undef CGAL_POLYCUBE_IGA_FREE_FUNCTION
+
+} // namespace parameters
+
+/// Value of option `tag` in `np`, or `fallback` when it was not given.
+template <typename Tag, typename NP, typename D>
+auto option(const NP& np, Tag tag, const D& fallback)
+{
+  return CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, tag), fallback);
+}
+
+} // namespace Polycube_IGA
+} // namespace CGAL
+
+#endif // CGAL_POLYCUBE_IGA_PARAMETERS_H
