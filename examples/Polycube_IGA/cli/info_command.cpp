@@ -50,6 +50,7 @@ void print_text(const Input_mesh& in, const PI::Surface_topology_result<Mesh>* t
     };
     lengths("handle", topo->handle_loops);
     lengths("tunnel", topo->tunnel_loops);
+    for(const auto& warning : topo->warnings) std::cout << "  warning: " << warning << "\n";
     if(topo->refinements)
       std::cout << "  loops traced on the mesh refined " << topo->refinements << " time(s) at edge midpoints\n";
   }
@@ -84,6 +85,7 @@ int run_info(const Arguments& args)
         .member("refinements", topo->refinements);
       w.key("handle_loops"); write_loops(w, topo->handle_loops, lm, in);
       w.key("tunnel_loops"); write_loops(w, topo->tunnel_loops, lm, in);
+      w.key("warnings").array(topo->warnings);
       w.key("handle_tunnel_linking").begin_array();
       for(const auto& row : topo->handle_tunnel_linking) w.array(row);
       w.end_array();
@@ -97,6 +99,7 @@ int run_info(const Arguments& args)
   } else {
     print_text(in, topo.get());
   }
+  std::cout.flush();
   in.report.require_valid(); // invalid input: the report above, then error line and exit 2
   return 0;
 }

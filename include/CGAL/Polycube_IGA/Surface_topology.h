@@ -46,6 +46,7 @@
 #include <map>
 #include <memory>
 #include <numeric>
+#include <string>
 #include <vector>
 
 namespace CGAL {
@@ -81,8 +82,12 @@ struct Surface_topology_result
   std::vector<Loop> homology_basis; ///< 2g cycles
   std::vector<Loop> handle_loops;   ///< g simple, pairwise disjoint, together non-separating
   std::vector<Loop> tunnel_loops;   ///< g simple, independent
-  /// lk(handle_i, tunnel_j pushed outwards): a unimodular g x g matrix for a genuine pair of bases.
+  /// lk(handle_i, tunnel_j pushed inwards): unimodular (det +-1) when handles and tunnels are dual
+  /// bases; lk(handle_i, tunnel_j pushed outwards) is always 0, as the handle bounds inside.
   std::vector<std::vector<int>> handle_tunnel_linking;
+  /// Things the user should know, e.g. fewer tunnel loops than the genus: a knotted handle
+  /// has no disk outside the solid, and its homological tunnel loop may be very long.
+  std::vector<std::string> warnings;
   /// Midpoint subdivisions that were needed to find disjoint loops. When nonzero, the loops'
   /// vertices refer to `refined_mesh`, whose first vertices are the input's.
   int refinements = 0;
@@ -186,6 +191,7 @@ private:
     std::vector<int> vertices, edges;
     internal::Homology_class cls;
     bool touches_border;
+    bool unreliable; // passes a vertex without a clean push-off direction: not for linking
   };
 
   static void count_and_check(const Graph& g, const TriangleMesh& tm, Result& r)
@@ -253,6 +259,7 @@ private:
   // Shortest loops through `root`, one per distinct non-trivial class (the shortest),
   // the `keep` shortest of them, plus the loops of `always` (edges) when given.
   static void loops_through_root(const Graph& g, const std::vector<double>& w,
+                                 const std::vector<char>& unreliable_vertex,
                                  const internal::Homology_coordinates<Graph>& H,
                                  const internal::Shortest_path_tree& t, std::size_t keep,
                                  const std::vector<int>& always, std::vector<Candidate>& out)
@@ -298,8 +305,11 @@ private:
       cand.length = 0;
       for(int x : cand.edges) cand.length += w[x];
       cand.cls = H.class_of_loop(cand.vertices, cand.edges);
-      cand.touches_border = false;
-      for(int v : cand.vertices) cand.touches_border = cand.touches_border || g.is_border_vertex[v];
+      cand.touches_border = cand.unreliable = false;
+      for(int v : cand.vertices) {
+        cand.touches_border = cand.touches_border || g.is_border_vertex[v];
+        cand.unreliable = cand.unreliable || unreliable_vertex[v];
+      }
       out.push_back(std::move(cand));
     }
   }
@@ -364,11 +374,18 @@ private:
       throw Internal_error("loop_search_failed", "tree-cotree found " + std::to_string(H.dimension()) +
                                                  " generators for genus " + std::to_string(genus));
 
+    // Push-off directions for the linking numbers; loops avoid vertices that have none.
+    const double outward = g.capped_signed_volume() >= 0 ? 1.0 : -1.0;
+    std::vector<double> clearance;
+    const std::vector<Eigen::Vector3d> normals = g.vertex_push_directions(clearance);
+    std::vector<char> unreliable(nv, 0);
+    for(int v = 0; v < nv; ++v) unreliable[v] = clearance[v] <= 0.01;
+
     // Candidates from farthest-point-sampled roots.
     std::vector<Candidate> candidates;
     const std::size_t keep = std::size_t(8 * genus + 8);
     std::vector<double> nearest(t0.distance);
-    loops_through_root(g, w, H, t0, keep, H.generators(), candidates);
+    loops_through_root(g, w, unreliable, H, t0, keep, H.generators(), candidates);
     for(int r = 1; r < number_of_roots; ++r) {
       int far = -1;
       double far_d = -1;
@@ -377,37 +394,52 @@ private:
       if(far < 0 || far_d <= 0) break;
       internal::Shortest_path_tree t = internal::shortest_path_tree(g, far, w);
       for(int v = 0; v < nv; ++v) nearest[v] = std::min(nearest[v], t.distance[v]);
-      loops_through_root(g, w, H, t, keep, {}, candidates);
+      loops_through_root(g, w, unreliable, H, t, keep, {}, candidates);
     }
 
-    const double outward = g.capped_signed_volume() >= 0 ? 1.0 : -1.0;
-    const std::vector<Eigen::Vector3d> normals = g.vertex_push_directions();
     std::vector<double> step(nv, std::numeric_limits<double>::infinity());
     for(int e = 0; e < g.number_of_edges(); ++e) {
       const double l = g.length(e);
       for(int v : g.edge_vertices[e]) step[v] = std::min(step[v], 0.05 * l);
     }
 
-    // Two rounds: the second adds roots on the loops the first one chose, where the
-    // shortest loops of those classes pass.
+    // Later rounds add roots on the loops the previous round chose, where the shortest
+    // loops of those classes pass, while that shortens them (a few rounds at most). A
+    // last one, only when tunnel loops are missing (a knotted handle's tunnel class is a
+    // long, twisted loop), keeps every class seen.
     Selection sel;
-    for(int round = 0; round < 2; ++round) {
+    auto total_length = [](const Selection& x) {
+      double t = 0;
+      for(const Candidate* c : x.handles) t += c->length;
+      for(const Candidate* c : x.tunnels) t += c->length;
+      return t;
+    };
+    double previous = std::numeric_limits<double>::infinity();
+    bool exhaustive = false;
+    for(int round = 0;; ++round) {
       std::stable_sort(candidates.begin(), candidates.end(),
                        [](const Candidate& a, const Candidate& b) { return a.length < b.length; });
       sel = select(g, candidates, genus, want_tunnels, normals, step, outward);
       if(!sel.ok) return false;
-      if(round == 1) break;
+      const bool tunnels_missing = want_tunnels && int(sel.tunnels.size()) < genus;
+      const double total = total_length(sel);
+      const bool improving = total < previous * (1 - 1e-9) && round < 5;
+      previous = total;
+      if(exhaustive || (!improving && !tunnels_missing)) break;
+      exhaustive = !improving && tunnels_missing;
       std::vector<int> roots;
       auto add_roots = [&](const std::vector<const Candidate*>& loops) {
         for(const Candidate* c : loops)
-          for(int k = 0; k < 3; ++k) roots.push_back(c->vertices[c->vertices.size() * k / 3]);
+          for(int k = 0; k < 4; ++k) roots.push_back(c->vertices[c->vertices.size() * k / 4]);
       };
       add_roots(sel.handles);
       add_roots(sel.tunnels);
       std::sort(roots.begin(), roots.end());
       roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
+      const std::size_t round_keep = exhaustive ? std::numeric_limits<std::size_t>::max() : keep;
       std::vector<Candidate> more;
-      for(int r : roots) loops_through_root(g, w, H, internal::shortest_path_tree(g, r, w), keep, {}, more);
+      for(int r : roots)
+        loops_through_root(g, w, unreliable, H, internal::shortest_path_tree(g, r, w), round_keep, {}, more);
       for(auto& c : more) candidates.push_back(std::move(c));
     }
 
@@ -426,11 +458,16 @@ private:
     for(const Candidate* c : sel.basis) result.homology_basis.push_back(to_loop(*c));
     for(const Candidate* c : sel.handles) result.handle_loops.push_back(to_loop(*c));
     for(const Candidate* c : sel.tunnels) result.tunnel_loops.push_back(to_loop(*c));
+    result.warnings.clear();
+    if(want_tunnels && int(sel.tunnels.size()) < genus)
+      result.warnings.push_back("only " + std::to_string(sel.tunnels.size()) + " of " + std::to_string(genus) +
+                                " tunnel loops found among the candidate loops (a knotted handle has no "
+                                "disk outside the solid)");
     result.handle_tunnel_linking.assign(sel.handles.size(), std::vector<int>(sel.tunnels.size(), 0));
     for(std::size_t i = 0; i < sel.handles.size(); ++i)
       for(std::size_t j = 0; j < sel.tunnels.size(); ++j)
         result.handle_tunnel_linking[i][j] = int(std::lround(internal::gauss_linking_number(
-          positions(g, sel.handles[i]->vertices), push_off(g, sel.tunnels[j]->vertices, normals, step, outward))));
+          positions(g, sel.handles[i]->vertices), push_off(g, sel.tunnels[j]->vertices, normals, step, -outward))));
     return true;
   }
 
@@ -447,24 +484,26 @@ private:
     const int d = 2 * genus;
     internal::Independence_tracker basis_rank(d);
     for(const Candidate& c : candidates)
-      if(basis_rank.insert(c.cls)) { s.basis.push_back(&c); if(basis_rank.rank() == d) break; }
-    if(basis_rank.rank() != d)
-      throw Internal_error("loop_search_failed", "candidate loops do not span the homology");
+      if(!c.unreliable && basis_rank.insert(c.cls)) { s.basis.push_back(&c); if(basis_rank.rank() == d) break; }
+    if(basis_rank.rank() != d) return s; // refine: loops avoiding unreliable vertices will exist
 
-    // Linking matrices; a push-off that crosses the surface gives non-integers: shrink it.
+    // Linking matrices. A push-off that crosses the surface elsewhere (a thin part) gives
+    // non-integers or matrices of the wrong rank: shrink it and try again.
     Eigen::MatrixXd Lp, Lm;
-    bool linked = false;
-    for(int tries = 0; tries < 4 && !linked; ++tries) {
-      linked = linking_matrices(g, s.basis, normals, step, outward, Lp, Lm);
-      if(!linked) for(double& x : step) x *= 0.25;
+    bool consistent = false;
+    for(int tries = 0; tries < 6 && !consistent; ++tries) {
+      consistent = linking_matrices(g, s.basis, normals, step, outward, Lp, Lm) &&
+                   Eigen::FullPivLU<Eigen::MatrixXd>(Lp).rank() == genus &&
+                   Eigen::FullPivLU<Eigen::MatrixXd>(Lm).rank() == genus &&
+                   Eigen::FullPivLU<Eigen::MatrixXd>(Lp - Lm).rank() == d;
+      if(!consistent) for(double& x : step) x *= 0.25;
     }
-    Eigen::MatrixXd B(d, d);
-    for(int i = 0; i < d; ++i) for(int k = 0; k < d; ++k) B(i, k) = s.basis[i]->cls[k];
-    Eigen::FullPivLU<Eigen::MatrixXd> lu_p(Lp), lu_m(Lm), lu_i(Lp - Lm);
-    if(!linked || lu_p.rank() != genus || lu_m.rank() != genus || lu_i.rank() != d)
+    if(!consistent)
       throw Internal_error("handle_tunnel_classification_failed",
                            "linking numbers of the homology basis are inconsistent (is the surface "
                            "self-intersecting or are normals inconsistent?)");
+    Eigen::MatrixXd B(d, d);
+    for(int i = 0; i < d; ++i) for(int k = 0; k < d; ++k) B(i, k) = s.basis[i]->cls[k];
     // Class y (tree-cotree coordinates) -> coefficients x = y B^-1; handle iff x Lp = 0.
     const Eigen::MatrixXd Binv = B.inverse();
     const Eigen::MatrixXd Kp = Binv * Lp, Km = Binv * Lm;
@@ -501,7 +540,6 @@ private:
           s.tunnels.push_back(&c);
           for(int v : c.vertices) used[v] = 1;
         }
-      if(int(s.tunnels.size()) < genus) return s;
     }
     s.ok = true;
     return s;

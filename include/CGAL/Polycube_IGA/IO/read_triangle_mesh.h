@@ -146,8 +146,13 @@ bool read_polygon_soup_file(const std::string& path, std::vector<Point>& points,
   }
   if(!ok) {
     points.clear(); polygons.clear();
+    // Only to name non-finite coordinates precisely; any other failure stays `unreadable`.
     if((ext == "off" || ext == "obj") &&
-       internal::read_ascii_soup_permissively(path, ext, points, polygons))
+       internal::read_ascii_soup_permissively(path, ext, points, polygons) && !polygons.empty() &&
+       std::any_of(points.begin(), points.end(), [](const Point& p) {
+         return !std::isfinite(CGAL::to_double(p.x())) || !std::isfinite(CGAL::to_double(p.y())) ||
+                !std::isfinite(CGAL::to_double(p.z()));
+       }))
       return true;
     points.clear(); polygons.clear();
     reason = "'" + path + "' is not a readable " + ext + " file";

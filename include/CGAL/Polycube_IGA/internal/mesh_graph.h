@@ -145,11 +145,12 @@ struct Mesh_graph
     }
   }
 
-  /// Unit directions d_v with d_v . n_f > 0 for every face f incident to v where such a
-  /// direction exists (found by pushing the angle-weighted normal towards the worst face):
-  /// a point moved from v along d_v, or a segment between two such moved points of an edge,
-  /// lies on the positive side of every incident face, hence off the surface locally.
-  std::vector<Eigen::Vector3d> vertex_push_directions() const
+  /// Unit directions d_v maximising min_f d_v . n_f over the faces f incident to v
+  /// (subgradient ascent from the angle-weighted normal). Where that minimum is positive
+  /// (`clearance[v] > 0`), a point moved from v along d_v, or a segment between two such
+  /// moved points of an edge, lies on the positive side of every incident face, hence off
+  /// the surface locally. A vertex whose star admits no such direction gets clearance <= 0.
+  std::vector<Eigen::Vector3d> vertex_push_directions(std::vector<double>& clearance) const
   {
     std::vector<Eigen::Vector3d> d = vertex_normals();
     std::vector<std::vector<Eigen::Vector3d>> incident(vertex.size());
@@ -159,13 +160,23 @@ struct Mesh_graph
       fn.normalize();
       for(int v : fv) incident[v].push_back(fn);
     }
+    clearance.assign(vertex.size(), -1);
+    auto worst_of = [&](std::size_t v, const Eigen::Vector3d& x) {
+      const Eigen::Vector3d* worst = &incident[v][0];
+      for(const auto& n : incident[v]) if(n.dot(x) < worst->dot(x)) worst = &n;
+      return worst;
+    };
     for(std::size_t v = 0; v < vertex.size(); ++v) {
-      for(int it = 0; it < 64 && !incident[v].empty(); ++it) {
-        const Eigen::Vector3d* worst = &incident[v][0];
-        for(const auto& n : incident[v]) if(n.dot(d[v]) < worst->dot(d[v])) worst = &n;
-        if(worst->dot(d[v]) > 0.05) break;
-        d[v] = (d[v] + 0.5 * *worst).normalized();
+      if(incident[v].empty()) continue;
+      Eigen::Vector3d best = d[v], x = d[v];
+      double best_value = worst_of(v, x)->dot(x);
+      for(int it = 0; it < 200 && best_value < 0.2; ++it) {
+        x = (x + (1.0 / (it + 2)) * *worst_of(v, x)).normalized();
+        const double value = worst_of(v, x)->dot(x);
+        if(value > best_value) { best_value = value; best = x; }
       }
+      d[v] = best;
+      clearance[v] = best_value;
     }
     return d;
   }

@@ -1,0 +1,166 @@
+// Copyright (c) 2026 Polycube_IGA contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Helpers shared by the test files: data paths, temporary files, small mesh generators
+// (voxel plates of any genus and boundary count, parametric tori) and running the CLI.
+
+#ifndef POLYCUBE_IGA_TEST_SUPPORT_H
+#define POLYCUBE_IGA_TEST_SUPPORT_H
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polycube_IGA/IO/read_triangle_mesh.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+namespace test_support {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+
+inline std::string data(const std::string& name) { return std::string(POLYCUBE_IGA_TEST_DATA_DIR) + "/" + name; }
+
+/// A fresh temporary directory per test process.
+inline std::string temp_path(const std::string& name)
+{
+  static std::string dir = [] {
+    char tmpl[] = "/tmp/polycube_iga_test_XXXXXX";
+    const char* d = mkdtemp(tmpl);
+    return std::string(d ? d : "/tmp");
+  }();
+  return dir + "/" + name;
+}
+
+inline std::string write_text(const std::string& name, const std::string& text)
+{
+  const std::string path = temp_path(name);
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+/// Reads a mesh and requires it to be valid.
+inline Mesh load(const std::string& path)
+{
+  Mesh m;
+  CGAL::Polycube_IGA::Validation_report r = CGAL::Polycube_IGA::read_triangle_mesh(path, m);
+  r.require_valid();
+  return m;
+}
+
+using Polygon = std::vector<std::size_t>;
+
+inline std::string off_text(const std::vector<std::array<double, 3>>& points, const std::vector<Polygon>& polygons)
+{
+  std::ostringstream os;
+  os.precision(17);
+  os << "OFF\n" << points.size() << " " << polygons.size() << " 0\n";
+  for(const auto& p : points) os << p[0] << " " << p[1] << " " << p[2] << "\n";
+  for(const auto& f : polygons) {
+    os << f.size();
+    for(std::size_t v : f) os << " " << v;
+    os << "\n";
+  }
+  return os.str();
+}
+
+/// Boundary surface of a one-voxel-thick plate of nx x ny cells with the cells in `holes`
+/// removed (each hole adds a handle), as quads; `open_tops` lists cells whose top face is
+/// left out (each adds a boundary loop). Holes and open tops must not touch each other.
+inline std::string voxel_plate_off(int nx, int ny, const std::set<std::pair<int, int>>& holes,
+                                   const std::set<std::pair<int, int>>& open_tops)
+{
+  std::map<std::array<int, 3>, std::size_t> index;
+  std::vector<std::array<double, 3>> points;
+  std::vector<Polygon> quads;
+  auto vid = [&](int x, int y, int z) {
+    auto it = index.find({x, y, z});
+    if(it != index.end()) return it->second;
+    index[{x, y, z}] = points.size();
+    points.push_back({double(x), double(y), double(z)});
+    return points.size() - 1;
+  };
+  auto filled = [&](int x, int y) { return x >= 0 && y >= 0 && x < nx && y < ny && !holes.count({x, y}); };
+  for(int x = 0; x < nx; ++x)
+    for(int y = 0; y < ny; ++y) {
+      if(!filled(x, y)) continue;
+      // bottom (normal -z) and top (normal +z), counter-clockwise seen from outside
+      quads.push_back({vid(x, y, 0), vid(x, y + 1, 0), vid(x + 1, y + 1, 0), vid(x + 1, y, 0)});
+      if(!open_tops.count({x, y}))
+        quads.push_back({vid(x, y, 1), vid(x + 1, y, 1), vid(x + 1, y + 1, 1), vid(x, y + 1, 1)});
+      if(!filled(x - 1, y)) quads.push_back({vid(x, y, 0), vid(x, y, 1), vid(x, y + 1, 1), vid(x, y + 1, 0)});
+      if(!filled(x + 1, y)) quads.push_back({vid(x + 1, y, 0), vid(x + 1, y + 1, 0), vid(x + 1, y + 1, 1), vid(x + 1, y, 1)});
+      if(!filled(x, y - 1)) quads.push_back({vid(x, y, 0), vid(x + 1, y, 0), vid(x + 1, y, 1), vid(x, y, 1)});
+      if(!filled(x, y + 1)) quads.push_back({vid(x, y + 1, 0), vid(x, y + 1, 1), vid(x + 1, y + 1, 1), vid(x + 1, y + 1, 0)});
+    }
+  return off_text(points, quads);
+}
+
+/// A plate with `genus` holes in a row and `boundaries` open top cells in a second row.
+inline std::string voxel_plate_with(int genus, int boundaries)
+{
+  std::set<std::pair<int, int>> holes, tops;
+  for(int i = 0; i < genus; ++i) holes.insert({1 + 2 * i, 1});
+  for(int i = 0; i < boundaries; ++i) tops.insert({1 + 2 * i, 3});
+  const int nx = 2 * std::max(genus, boundaries) + 1;
+  return voxel_plate_off(nx, boundaries > 0 ? 5 : 3, holes, tops);
+}
+
+/// Torus of major radius R and minor radius r, n x m vertices.
+inline std::string torus_off(double R, double r, int n, int m)
+{
+  std::vector<std::array<double, 3>> points;
+  std::vector<Polygon> tris;
+  for(int i = 0; i < n; ++i)
+    for(int j = 0; j < m; ++j) {
+      const double u = 2 * M_PI * i / n, v = 2 * M_PI * j / m;
+      points.push_back({(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
+    }
+  auto id = [&](int i, int j) { return std::size_t(((i + n) % n) * m + (j + m) % m); };
+  for(int i = 0; i < n; ++i)
+    for(int j = 0; j < m; ++j) {
+      tris.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      tris.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return off_text(points, tris);
+}
+
+struct Cli_result
+{
+  int exit_code = -1;
+  std::string out, err;
+};
+
+/// Runs the `polycube_iga` tool with `args` (a shell-quoted string).
+inline Cli_result run_cli(const std::string& args)
+{
+  static int counter = 0;
+  const std::string out = temp_path("cli_out_" + std::to_string(counter)), err = temp_path("cli_err_" + std::to_string(counter));
+  ++counter;
+  const std::string cmd = std::string("'") + POLYCUBE_IGA_CLI + "' " + args + " > '" + out + "' 2> '" + err + "'";
+  const int status = std::system(cmd.c_str());
+  Cli_result r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream o(out), e(err);
+  std::stringstream so, se;
+  so << o.rdbuf();
+  se << e.rdbuf();
+  r.out = so.str();
+  r.err = se.str();
+  return r;
+}
+
+} // namespace test_support
+
+#endif
