@@ -1,0 +1,135 @@
+// Copyright (c) 2026 Polycube_IGA contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Fidelity of a multipatch volume to the triangle mesh it was built from (reference §4.1,
+// quality figure "fidelity"): the two-sided Hausdorff distance between the boundary sides
+// of the volume and the mesh, estimated on samples with CGAL AABB trees, absolute and
+// relative to the diagonal of the mesh's bounding box. The volume side is sampled on a
+// regular grid per boundary side (at least `samples_per_direction` points per direction and
+// four per knot span) and triangulated; the mesh side uses its vertices and face centroids.
+// The spline side's triangulation adds its chord error, so raise the sampling before
+// reading a small value as a failure. Kept apart from Quality.h so that Eigen-only users
+// do not pull CGAL's AABB tree.
+
+#ifndef CGAL_POLYCUBE_IGA_BOUNDARY_DISTANCE_H
+#define CGAL_POLYCUBE_IGA_BOUNDARY_DISTANCE_H
+
+#include <CGAL/Polycube_IGA/Multipatch_volume.h>
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Polygon_mesh_processing/bbox.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <vector>
+
+namespace CGAL {
+namespace Polycube_IGA {
+
+struct Boundary_distance
+{
+  double spline_to_mesh = 0.;  ///< max over volume-boundary samples of the distance to the mesh
+  double mesh_to_spline = 0.;  ///< max over mesh samples of the distance to the volume boundary
+  double hausdorff = 0.;       ///< max of the two
+  double relative = 0.;        ///< hausdorff / mesh bounding-box diagonal
+  double mesh_bbox_diagonal = 0.;
+  std::size_t spline_samples = 0, mesh_samples = 0, boundary_sides = 0;
+};
+
+/// Two-sided Hausdorff distance between the boundary of `mp` (its declared boundary sides,
+/// or every side not in an interface when none is declared) and the triangle mesh `mesh`.
+template <class TriangleMesh>
+Boundary_distance boundary_hausdorff_distance(const Multipatch_volume& mp, const TriangleMesh& mesh,
+                                              int samples_per_direction = 64)
+{
+  using Point_3 = typename boost::property_traits<
+    typename boost::property_map<TriangleMesh, boost::vertex_point_t>::const_type>::value_type;
+  using K = typename CGAL::Kernel_traits<Point_3>::Kernel;
+  using Triangle_3 = typename K::Triangle_3;
+  if(faces(mesh).empty()) throw Invalid_input_error("empty_mesh", "the reference triangle mesh has no face");
+  if(!CGAL::is_triangle_mesh(mesh)) throw Invalid_input_error("not_triangle_mesh", "the reference mesh must be made of triangles");
+
+  std::vector<Patch_side> sides = mp.boundaries();
+  if(sides.empty()) {
+    std::set<Patch_side> glued;
+    for(const auto& f : mp.interfaces()) {
+      glued.insert(f.first);
+      glued.insert(f.second);
+    }
+    for(std::size_t p = 0; p < mp.number_of_patches(); ++p)
+      for(int s = 1; s <= 6; ++s)
+        if(!glued.count({p, s})) sides.push_back({p, s});
+  }
+  Boundary_distance r;
+  r.boundary_sides = sides.size();
+  if(sides.empty()) throw Invalid_input_error("no_boundary", "the multipatch volume has no boundary side");
+
+  // Sample and triangulate the boundary sides.
+  std::vector<Point_3> spline_points;
+  std::vector<Triangle_3> spline_triangles;
+  for(const Patch_side& ps : sides) {
+    const Tensor_bspline_volume& v = mp.patch(ps.patch);
+    const int d = side_direction(ps.side), t0 = d == 0 ? 1 : 0, t1 = d == 2 ? 1 : 2;
+    const int n0 = std::max(samples_per_direction, 4 * v.knot_vector(t0).number_of_spans() + 1);
+    const int n1 = std::max(samples_per_direction, 4 * v.knot_vector(t1).number_of_spans() + 1);
+    const std::size_t base = spline_points.size();
+    for(int j = 0; j < n1; ++j)
+      for(int i = 0; i < n0; ++i) {
+        std::array<double, 3> s{};
+        s[std::size_t(d)] = double(side_parameter(ps.side));
+        s[std::size_t(t0)] = double(i) / double(n0 - 1);
+        s[std::size_t(t1)] = double(j) / double(n1 - 1);
+        const Eigen::Vector3d x = v.evaluate(v.from_normalized(s));
+        spline_points.emplace_back(x.x(), x.y(), x.z());
+      }
+    auto at = [&](int i, int j) { return spline_points[base + std::size_t(i) + std::size_t(n0) * std::size_t(j)]; };
+    for(int j = 0; j + 1 < n1; ++j)
+      for(int i = 0; i + 1 < n0; ++i) {
+        spline_triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+        spline_triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+      }
+  }
+  // Degenerate sample triangles (collapsed sides) are harmless for distance queries but
+  // AABB trees reject nothing; keep them.
+
+  using Mesh_primitive = CGAL::AABB_face_graph_triangle_primitive<TriangleMesh>;
+  using Mesh_tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Mesh_primitive>>;
+  Mesh_tree mesh_tree(faces(mesh).first, faces(mesh).second, mesh);
+  mesh_tree.accelerate_distance_queries();
+  for(const Point_3& p : spline_points)
+    r.spline_to_mesh = std::max(r.spline_to_mesh, std::sqrt(CGAL::to_double(mesh_tree.squared_distance(p))));
+  r.spline_samples = spline_points.size();
+
+  using Soup_primitive = CGAL::AABB_triangle_primitive<K, typename std::vector<Triangle_3>::const_iterator>;
+  using Soup_tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Soup_primitive>>;
+  Soup_tree soup_tree(spline_triangles.cbegin(), spline_triangles.cend());
+  soup_tree.accelerate_distance_queries();
+  auto vpm = get(CGAL::vertex_point, mesh);
+  std::vector<Point_3> mesh_points;
+  for(auto v : vertices(mesh)) mesh_points.push_back(get(vpm, v));
+  for(auto f : faces(mesh)) {
+    auto h = halfedge(f, mesh);
+    mesh_points.push_back(CGAL::centroid(get(vpm, source(h, mesh)), get(vpm, target(h, mesh)),
+                                         get(vpm, target(next(h, mesh), mesh))));
+  }
+  for(const Point_3& p : mesh_points)
+    r.mesh_to_spline = std::max(r.mesh_to_spline, std::sqrt(CGAL::to_double(soup_tree.squared_distance(p))));
+  r.mesh_samples = mesh_points.size();
+
+  const CGAL::Bbox_3 bb = CGAL::Polygon_mesh_processing::bbox(mesh);
+  r.mesh_bbox_diagonal = std::sqrt(CGAL::square(bb.xmax() - bb.xmin()) + CGAL::square(bb.ymax() - bb.ymin()) +
+                                   CGAL::square(bb.zmax() - bb.zmin()));
+  r.hausdorff = std::max(r.spline_to_mesh, r.mesh_to_spline);
+  r.relative = r.mesh_bbox_diagonal > 0. ? r.hausdorff / r.mesh_bbox_diagonal : 0.;
+  return r;
+}
+
+} // namespace Polycube_IGA
+} // namespace CGAL
+
+#endif // CGAL_POLYCUBE_IGA_BOUNDARY_DISTANCE_H
