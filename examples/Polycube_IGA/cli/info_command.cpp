@@ -20,13 +20,12 @@ namespace {
 namespace PI = CGAL::Polycube_IGA;
 
 template <class Loops>
-void write_loops(PI::internal::Json_writer& w, const Loops& loops, const Mesh& loop_mesh,
-                 const Input_mesh& input)
+void write_loops(PI::internal::Json_writer& w, const Loops& loops, const Input_mesh& input)
 {
   w.begin_array();
   for(const auto& loop : loops) {
     w.begin_object().key("vertices").begin_array();
-    for(auto v : loop.vertices) w.value(input.input_index(v, loop_mesh));
+    for(auto v : loop.vertices) w.value(input.input_index(v));
     w.end_array().key("points").begin_array();
     for(const auto& p : loop.points) w.begin_array().value(p[0]).value(p[1]).value(p[2]).end_array();
     w.end_array().member("length", loop.length).end_object();
@@ -74,7 +73,6 @@ int run_info(const Arguments& args)
       .member("input_vertices", in.report.input_vertices)
       .member("input_faces", in.report.input_faces);
     if(topo) {
-      const Mesh& lm = topo->loop_mesh(in.mesh);
       w.member("vertices", topo->number_of_vertices)
         .member("faces", topo->number_of_faces)
         .member("edges", topo->number_of_edges)
@@ -83,8 +81,8 @@ int run_info(const Arguments& args)
         .member("genus", topo->genus)
         .member("euler_characteristic", topo->euler_characteristic)
         .member("refinements", topo->refinements);
-      w.key("handle_loops"); write_loops(w, topo->handle_loops, lm, in);
-      w.key("tunnel_loops"); write_loops(w, topo->tunnel_loops, lm, in);
+      w.key("handle_loops"); write_loops(w, topo->handle_loops, in);
+      w.key("tunnel_loops"); write_loops(w, topo->tunnel_loops, in);
       w.key("warnings").array(topo->warnings);
       w.key("handle_tunnel_linking").begin_array();
       for(const auto& row : topo->handle_tunnel_linking) w.array(row);

@@ -28,14 +28,13 @@ struct Input_mesh
 
   bool valid() const { return report.is_valid(); }
 
-  /// Index in the input file of vertex v of `m` (the input mesh or a refinement of it,
-  /// whose first vertices are the input mesh's); -1 for a vertex added by refinement.
-  long input_index(Mesh::Vertex_index v, const Mesh& m) const
+  /// Index in the input file of vertex v of the input mesh or of a refinement of it (whose
+  /// first vertices are the input mesh's); -1 for a vertex added by refinement.
+  long input_index(Mesh::Vertex_index v) const
   {
     if(std::size_t(v) >= num_vertices(mesh)) return -1;
     auto map = mesh.property_map<Mesh::Vertex_index, std::size_t>(
                  CGAL::Polycube_IGA::input_vertex_index_property()).first;
-    (void)m;
     return long(map[v]);
   }
 };

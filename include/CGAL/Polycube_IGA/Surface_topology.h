@@ -46,6 +46,7 @@
 #include <map>
 #include <memory>
 #include <numeric>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -276,8 +277,12 @@ private:
     }
     std::map<internal::Homology_class, std::pair<double, int>> best; // class -> (length, edge)
     internal::Homology_class c(d);
-    for(int e = 0; e < g.number_of_edges(); ++e) {
+    // Only the edges of the explored ball, each once (from its canonical source).
+    for(int v : t.order)
+    for(int k = g.offset[v]; k < g.offset[v + 1]; ++k) {
+      const int e = g.adjacent_edge[k];
       const int a = g.edge_vertices[e][0], b = g.edge_vertices[e][1];
+      if(a != v) continue;
       if(t.parent_edge[a] == e || t.parent_edge[b] == e) continue;
       if(!std::isfinite(t.distance[a]) || !std::isfinite(t.distance[b])) continue;
       const int* he = H.at(e);
@@ -288,11 +293,12 @@ private:
       }
       if(zero) continue;
       const double len = t.distance[a] + w[e] + t.distance[b];
-      // A class and its opposite are the same loop reversed.
-      internal::Homology_class key = c;
-      for(int k = 0; k < d; ++k) if(key[k] != 0) { if(key[k] < 0) for(int& x : key) x = -x; break; }
-      auto it = best.find(key);
-      if(it == best.end() || len < it->second.first) best[key] = {len, e};
+      // A class and its opposite are the same loop reversed: key on the one whose first
+      // non-zero entry is positive (in place: lookups allocate nothing).
+      for(int k = 0; k < d; ++k) if(c[k] != 0) { if(c[k] < 0) for(int& x : c) x = -x; break; }
+      auto it = best.find(c);
+      if(it == best.end()) best.emplace(c, std::make_pair(len, e));
+      else if(len < it->second.first) it->second = {len, e};
     }
     std::vector<std::pair<double, int>> chosen;
     for(const auto& kv : best) chosen.push_back(kv.second);
@@ -331,8 +337,7 @@ private:
     return p;
   }
 
-  // Linking matrices of the basis with its outward (+) and inward (-) push-offs. Returns
-  // false when the numbers are not integers (push-off crossing the surface elsewhere).
+  // Linking matrices of the basis with its outward (+) and inward (-) push-offs.
   static bool linking_matrices(const Graph& g, const std::vector<const Candidate*>& basis,
                                const std::vector<Eigen::Vector3d>& normals, const std::vector<double>& step,
                                double outward, Eigen::MatrixXd& Lp, Eigen::MatrixXd& Lm)
@@ -347,11 +352,8 @@ private:
     }
     for(int i = 0; i < n; ++i)
       for(int j = 0; j < n; ++j) {
-        const double p = internal::gauss_linking_number(on[i], plus[j]);
-        const double m = internal::gauss_linking_number(on[i], minus[j]);
-        if(std::abs(p - std::round(p)) > 0.1 || std::abs(m - std::round(m)) > 0.1) return false;
-        Lp(i, j) = std::round(p);
-        Lm(i, j) = std::round(m);
+        Lp(i, j) = internal::projected_linking_number(on[i], plus[j]);
+        Lm(i, j) = internal::projected_linking_number(on[i], minus[j]);
       }
     return true;
   }
@@ -416,6 +418,7 @@ private:
     };
     double previous = std::numeric_limits<double>::infinity();
     bool exhaustive = false;
+    std::set<int> used_roots;
     for(int round = 0;; ++round) {
       std::stable_sort(candidates.begin(), candidates.end(),
                        [](const Candidate& a, const Candidate& b) { return a.length < b.length; });
@@ -428,18 +431,25 @@ private:
       if(exhaustive || (!improving && !tunnels_missing)) break;
       exhaustive = !improving && tunnels_missing;
       std::vector<int> roots;
+      double longest = 0;
       auto add_roots = [&](const std::vector<const Candidate*>& loops) {
-        for(const Candidate* c : loops)
-          for(int k = 0; k < 4; ++k) roots.push_back(c->vertices[c->vertices.size() * k / 4]);
+        for(const Candidate* c : loops) {
+          longest = std::max(longest, c->length);
+          for(int k = 0; k < 4; ++k) {
+            const int r = c->vertices[c->vertices.size() * k / 4];
+            if(used_roots.insert(r).second) roots.push_back(r);
+          }
+        }
       };
       add_roots(sel.handles);
       add_roots(sel.tunnels);
-      std::sort(roots.begin(), roots.end());
-      roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
+      // A loop through r no longer than the longest chosen one stays within half that
+      // distance of r: the improvement rounds search balls, not the whole mesh.
       const std::size_t round_keep = exhaustive ? std::numeric_limits<std::size_t>::max() : keep;
+      const double radius = exhaustive ? std::numeric_limits<double>::infinity() : 0.5 * longest * (1 + 1e-9);
       std::vector<Candidate> more;
       for(int r : roots)
-        loops_through_root(g, w, unreliable, H, internal::shortest_path_tree(g, r, w), round_keep, {}, more);
+        loops_through_root(g, w, unreliable, H, internal::shortest_path_tree(g, r, w, {}, radius), round_keep, {}, more);
       for(auto& c : more) candidates.push_back(std::move(c));
     }
 
@@ -466,8 +476,8 @@ private:
     result.handle_tunnel_linking.assign(sel.handles.size(), std::vector<int>(sel.tunnels.size(), 0));
     for(std::size_t i = 0; i < sel.handles.size(); ++i)
       for(std::size_t j = 0; j < sel.tunnels.size(); ++j)
-        result.handle_tunnel_linking[i][j] = int(std::lround(internal::gauss_linking_number(
-          positions(g, sel.handles[i]->vertices), push_off(g, sel.tunnels[j]->vertices, normals, step, -outward))));
+        result.handle_tunnel_linking[i][j] = internal::projected_linking_number(
+          positions(g, sel.handles[i]->vertices), push_off(g, sel.tunnels[j]->vertices, normals, step, -outward));
     return true;
   }
 
@@ -488,7 +498,7 @@ private:
     if(basis_rank.rank() != d) return s; // refine: loops avoiding unreliable vertices will exist
 
     // Linking matrices. A push-off that crosses the surface elsewhere (a thin part) gives
-    // non-integers or matrices of the wrong rank: shrink it and try again.
+    // matrices of the wrong rank: shrink it and try again.
     Eigen::MatrixXd Lp, Lm;
     bool consistent = false;
     for(int tries = 0; tries < 6 && !consistent; ++tries) {

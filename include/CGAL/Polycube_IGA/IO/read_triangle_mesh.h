@@ -133,8 +133,7 @@ bool read_polygon_soup_file(const std::string& path, std::vector<Point>& points,
     probe.seekg(0, std::ios::end);
     if(probe.tellg() <= 0) { reason = "'" + path + "' is an empty file"; return false; }
   }
-  // CGAL dispatches on the extension it sees: give it the lower-case one through a copy-free
-  // path when possible.
+  // Dispatch on the lower-cased extension ourselves: CGAL's dispatcher is case-sensitive.
   bool ok = false;
   try {
     if(ext == "off") ok = CGAL::IO::read_OFF(path, points, polygons);

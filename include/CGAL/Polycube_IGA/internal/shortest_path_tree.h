@@ -8,6 +8,8 @@
 #define CGAL_POLYCUBE_IGA_INTERNAL_SHORTEST_PATH_TREE_H
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <queue>
@@ -33,10 +35,13 @@ struct Shortest_path_tree
 };
 
 /// Shortest-path tree from `root`; `weight[e]` >= 0; vertices with `blocked[v]` are never
-/// entered (except the root). Pass an empty `blocked` to allow all.
+/// entered (except the root). Pass an empty `blocked` to allow all. The search stops at
+/// `max_distance`: farther vertices keep an infinite distance (a local search costs only
+/// the size of the ball it explores).
 template <class Graph>
 Shortest_path_tree shortest_path_tree(const Graph& g, int root, const std::vector<double>& weight,
-                                      const std::vector<bool>& blocked = {})
+                                      const std::vector<bool>& blocked = {},
+                                      double max_distance = std::numeric_limits<double>::infinity())
 {
   const int n = g.number_of_vertices();
   Shortest_path_tree t;
@@ -54,6 +59,7 @@ Shortest_path_tree shortest_path_tree(const Graph& g, int root, const std::vecto
     auto [d, v] = queue.top();
     queue.pop();
     if(settled[v]) continue;
+    if(d > max_distance) break;
     settled[v] = true;
     t.order.push_back(v);
     for(int k = g.offset[v]; k < g.offset[v + 1]; ++k) {
@@ -69,6 +75,9 @@ Shortest_path_tree shortest_path_tree(const Graph& g, int root, const std::vecto
       }
     }
   }
+  if(std::isfinite(max_distance))
+    for(int v = 0; v < n; ++v)
+      if(!settled[v]) { t.distance[v] = std::numeric_limits<double>::infinity(); t.parent_edge[v] = -1; }
   return t;
 }
 
