@@ -55,24 +55,7 @@ double laplacian_baseline(int dim, int n, int repetitions)
   });
 }
 
-std::array<PI::Point_grid, 6> face_grids(int m)
-{
-  std::array<PI::Point_grid, 6> grids;
-  for(int s = 1; s <= 6; ++s) {
-    PI::Point_grid g(m, m);
-    const int d = PI::side_direction(s), a = d == 0 ? 1 : 0, b = d == 2 ? 1 : 2;
-    for(int j = 0; j < m; ++j)
-      for(int i = 0; i < m; ++i) {
-        double x[3];
-        x[d] = PI::side_parameter(s);
-        x[a] = double(i) / (m - 1);
-        x[b] = double(j) / (m - 1);
-        g(i, j) = twist(x[0], x[1], x[2]);
-      }
-    grids[std::size_t(s - 1)] = g;
-  }
-  return grids;
-}
+std::array<PI::Point_grid, 6> face_grids(int m) { return PI::sample_cuboid_faces(twist, m); }
 
 void run(const polycube_iga_bench::Options& opt)
 {

@@ -109,21 +109,7 @@ Vec twist(double u, double v, double w, double angle = 1.0)
 /// the §4.1 pipeline does (faces from sampled grids, Coons + harmonic interior).
 Tensor_bspline_volume twisted_block(int spans = 4, double angle = 1.0)
 {
-  std::array<PI::Point_grid, 6> grids;
-  const int m = 17;
-  for(int s = 1; s <= 6; ++s) {
-    PI::Point_grid g(m, m);
-    const int d = PI::side_direction(s), a = d == 0 ? 1 : 0, b = d == 2 ? 1 : 2;
-    for(int j = 0; j < m; ++j)
-      for(int i = 0; i < m; ++i) {
-        double x[3];
-        x[d] = PI::side_parameter(s);
-        x[a] = double(i) / (m - 1);
-        x[b] = double(j) / (m - 1);
-        g(i, j) = twist(x[0], x[1], x[2], angle);
-      }
-    grids[std::size_t(s - 1)] = g;
-  }
+  const auto grids = PI::sample_cuboid_faces([angle](double u, double v, double w) { return twist(u, v, w, angle); }, 17);
   PI::Volume_fitting_options o;
   o.knots = {Knot_vector::uniform(3, spans), Knot_vector::uniform(3, spans), Knot_vector::uniform(3, spans)};
   o.parameterization = PI::Parameterization::uniform;

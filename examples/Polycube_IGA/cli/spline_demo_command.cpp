@@ -30,26 +30,12 @@ namespace {
 namespace PI = CGAL::Polycube_IGA;
 using Map = std::function<Eigen::Vector3d(double, double, double)>;
 
-/// The six face grids of the cuboid image of `f` over [0,1]^3, m samples per direction.
+/// Fits the image of [0,1]^3 under `f` from m x m samples per face, cubic, `spans` spans.
 PI::Tensor_bspline_volume fit_cuboid(const Map& f, int m, int spans)
 {
-  std::array<PI::Point_grid, 6> grids;
-  for(int s = 1; s <= 6; ++s) {
-    PI::Point_grid g(m, m);
-    const int d = PI::side_direction(s), a = d == 0 ? 1 : 0, b = d == 2 ? 1 : 2;
-    for(int j = 0; j < m; ++j)
-      for(int i = 0; i < m; ++i) {
-        double x[3];
-        x[d] = PI::side_parameter(s);
-        x[a] = double(i) / (m - 1);
-        x[b] = double(j) / (m - 1);
-        g(i, j) = f(x[0], x[1], x[2]);
-      }
-    grids[std::size_t(s - 1)] = g;
-  }
   PI::Volume_fitting_options o;
   o.knots = {PI::Knot_vector::uniform(3, spans), PI::Knot_vector::uniform(3, spans), PI::Knot_vector::uniform(3, spans)};
-  return PI::fit_bspline_volume(grids, o).volume;
+  return PI::fit_bspline_volume(PI::sample_cuboid_faces(f, m), o).volume;
 }
 
 void write_all(const std::string& dir, const std::string& name, const PI::Multipatch_volume& mp, int samples)
@@ -85,24 +71,18 @@ int run_spline_demo(const Arguments& args)
   const int m = 8 * spans + 1;
   const double pi = 3.14159265358979323846;
 
-  // Quarter annulus r in [1, 2], z in [0, 0.6]; u = radius, v = height, w = angle so that
-  // (u, v, w) is right-handed. Split at 45 degrees: both patches evaluate the shared face
-  // with the same arguments, so their fitted faces coincide bit for bit.
+  // Quarter annulus r in [1, 2], z in [0, 0.6], split at 45 degrees; (u, v, w) = (radius,
+  // angle, height) is right-handed. Both patches evaluate the shared face with the same
+  // arguments, so their fitted faces coincide bit for bit.
   auto annulus = [&](double theta0) -> Map {
     return [=](double u, double v, double w) {
-      const double t = theta0 + w * (pi / 4.), r = 1. + u;
-      return Eigen::Vector3d(r * std::cos(t), r * std::sin(t), 0.6 * v);
+      const double t = theta0 + v * (pi / 4.), r = 1. + u;
+      return Eigen::Vector3d(r * std::cos(t), r * std::sin(t), 0.6 * w);
     };
   };
-  // Orientation: (d/du, d/dv, d/dw) = (radial, up, tangential) is left-handed; use
-  // (u, v, w) -> (radius, angle, height) instead.
-  auto annulus_rh = [&](double theta0) -> Map {
-    const Map f = annulus(theta0);
-    return [f](double u, double v, double w) { return f(u, w, v); };
-  };
   PI::Multipatch_volume two;
-  two.add_patch(fit_cuboid(annulus_rh(0.), m, spans));
-  two.add_patch(fit_cuboid(annulus_rh(pi / 4.), m, spans));
+  two.add_patch(fit_cuboid(annulus(0.), m, spans));
+  two.add_patch(fit_cuboid(annulus(pi / 4.), m, spans));
   two.compute_topology();
   write_all(dir, "two_patch", two, samples);
 

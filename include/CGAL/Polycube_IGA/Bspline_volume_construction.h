@@ -20,6 +20,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -219,6 +220,29 @@ struct Volume_fitting_options
   Parameterization parameterization = Parameterization::chord_length;
   Volume_construction_options construction;
 };
+
+/// Six m x m point grids sampling `f` on the sides of [0,1]^3, in the layout
+/// fit_bspline_volume() expects (side s indexed by its two remaining directions, increasing).
+/// Handy for analytic shapes, examples and tests.
+inline std::array<Point_grid, 6> sample_cuboid_faces(const std::function<Eigen::Vector3d(double, double, double)>& f, int m)
+{
+  if(m < 2) throw Invalid_input_error("invalid_grid", "a face grid needs at least 2 x 2 points");
+  std::array<Point_grid, 6> grids;
+  for(int s = 1; s <= 6; ++s) {
+    Point_grid g(m, m);
+    const int d = side_direction(s), a = d == 0 ? 1 : 0, b = d == 2 ? 1 : 2;
+    for(int j = 0; j < m; ++j)
+      for(int i = 0; i < m; ++i) {
+        double x[3];
+        x[d] = double(side_parameter(s));
+        x[a] = double(i) / double(m - 1);
+        x[b] = double(j) / double(m - 1);
+        g(i, j) = f(x[0], x[1], x[2]);
+      }
+    grids[std::size_t(s - 1)] = g;
+  }
+  return grids;
+}
 
 /// The §4.1 recipe for one cuboid: `grids[s-1]` samples side s (G+Smo order), indexed by the
 /// two remaining directions in increasing order. Corners are averaged over the faces that
