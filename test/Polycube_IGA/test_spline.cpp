@@ -369,7 +369,7 @@ TEST_CASE("surface fitting converges at the expected rate", "[spline]")
   CHECK(errors[2] < 1e-5);
 }
 
-TEST_CASE("fitting with chord length and regularization; neighbours share their boundary exactly", "[spline]")
+TEST_CASE("fitting with chord length and regularization, neighbours share their boundary exactly", "[spline]")
 {
   // Two faces of a cylinder-like surface meeting along x = 0, fitted separately.
   auto f = [](double x, double y) { return Vec(x, y, 0.3 * std::sin(3 * x + y) + 0.1 * y * y); };
@@ -407,7 +407,7 @@ TEST_CASE("fitting with chord length and regularization; neighbours share their 
   CHECK_THROWS_AS(PI::fit_bspline_surface(right, o), PI::Invalid_input_error);
 }
 
-TEST_CASE("Coons volume reproduces a trilinear block exactly; smoothing variants", "[spline]")
+TEST_CASE("Coons volume reproduces a trilinear block exactly, smoothing variants", "[spline]")
 {
   const Vec c[8] = {Vec(0, 0, 0), Vec(2, 0.1, 0), Vec(-0.2, 1, 0.1), Vec(1.7, 1.4, 0.2),
                     Vec(0.1, -0.1, 1), Vec(2.2, 0, 1.3), Vec(0, 1.1, 1.2), Vec(2, 1.5, 1.6)};
@@ -551,7 +551,7 @@ TEST_CASE("multipatch topology, direction maps, interface conformity", "[spline]
   CHECK_THROWS_AS(wrong.add_interface(h), PI::Invalid_input_error);
 }
 
-TEST_CASE("G+Smo XML round trip is bit for bit; VTU and JSON are written", "[spline]")
+TEST_CASE("G+Smo XML round trip is bit for bit, VTU and JSON are written", "[spline]")
 {
   PI::Multipatch_volume mp;
   mp.add_patch(PI::insert_knot<3>(twisted_block(3, 0.7), 0, 1. / 3. + 1e-3));
