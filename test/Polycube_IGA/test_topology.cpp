@@ -9,6 +9,7 @@
 // with push-offs along the test's own area-weighted normals.
 
 #include "test_support.h"
+#include "test_geometry.h"
 
 #include <CGAL/Polycube_IGA/Surface_topology.h>
 #include <CGAL/Polycube_IGA/internal/linking_number.h>
@@ -24,59 +25,8 @@ using namespace test_support;
 namespace PI = CGAL::Polycube_IGA;
 namespace PIP = CGAL::Polycube_IGA::parameters;
 using Result = PI::Surface_topology_result<Mesh>;
-using V3 = Eigen::Vector3d;
 
 namespace {
-
-V3 pos(const Mesh& m, Mesh::Vertex_index v)
-{
-  const Point& p = m.point(v);
-  return V3(p.x(), p.y(), p.z());
-}
-
-/// The independent check: the Gauss double integral (the stage counts projected crossings).
-int gauss_linking(const std::vector<V3>& a, const std::vector<V3>& b)
-{
-  const double lk = PI::internal::gauss_linking_number(a, b);
-  CHECK(std::abs(lk - std::round(lk)) < 0.05); // an integer for disjoint closed curves
-  return int(std::lround(lk));
-}
-
-struct Geometry
-{
-  std::vector<V3> normal; // area-weighted, oriented outwards
-  std::vector<double> step;
-};
-
-Geometry outward_geometry(const Mesh& m)
-{
-  Geometry g;
-  g.normal.assign(num_vertices(m), V3::Zero());
-  g.step.assign(num_vertices(m), 1e300);
-  double volume = 0;
-  for(auto f : faces(m)) {
-    std::vector<Mesh::Vertex_index> vs(vertices_around_face(halfedge(f, m), m).begin(),
-                                       vertices_around_face(halfedge(f, m), m).end());
-    const V3 a = pos(m, vs[0]), b = pos(m, vs[1]), c = pos(m, vs[2]);
-    const V3 n = (b - a).cross(c - a);
-    volume += a.dot(b.cross(c)) / 6;
-    for(auto v : vs) g.normal[v] += n;
-  }
-  const double sign = volume >= 0 ? 1 : -1;
-  for(auto& n : g.normal) n = sign * n.normalized();
-  for(auto e : edges(m)) {
-    const double l = (pos(m, source(e, m)) - pos(m, target(e, m))).norm();
-    for(auto v : {source(e, m), target(e, m)}) g.step[v] = std::min(g.step[v], 1e-3 * l);
-  }
-  return g;
-}
-
-std::vector<V3> points_of(const Mesh& m, const PI::Surface_loop<Mesh>& loop, const Geometry* g = nullptr, double side = 0)
-{
-  std::vector<V3> p;
-  for(auto v : loop.vertices) p.push_back(g ? V3(pos(m, v) + side * g->step[v] * g->normal[v]) : pos(m, v));
-  return p;
-}
 
 /// Simple closed loop along edges of `m`, whose points and length match its vertices.
 void check_loop_is_simple_edge_cycle(const Mesh& m, const PI::Surface_loop<Mesh>& loop, bool euclidean = true)
@@ -154,19 +104,19 @@ void check_topology(const Mesh& input, const Result& r, int genus, int boundarie
   for(std::size_t i = 0; i < r.handle_loops.size(); ++i) {
     for(std::size_t j = 0; j < r.handle_loops.size(); ++j) {
       INFO("handle " << i << " links handle " << j << " pushed outwards");
-      CHECK(gauss_linking(points_of(m, r.handle_loops[i]), points_of(m, r.handle_loops[j], &geo, +1)) == 0);
+      CHECK(gauss_linking(points_of(m, r.handle_loops[i].vertices), points_of(m, r.handle_loops[j].vertices, &geo, +1)) == 0);
     }
     for(std::size_t j = 0; j < r.tunnel_loops.size(); ++j)
       {
       // A handle bounds a disk inside: it cannot link anything outside.
-      CHECK(gauss_linking(points_of(m, r.handle_loops[i]), points_of(m, r.tunnel_loops[j], &geo, +1)) == 0);
-      ht(i, j) = gauss_linking(points_of(m, r.handle_loops[i]), points_of(m, r.tunnel_loops[j], &geo, -1));
+      CHECK(gauss_linking(points_of(m, r.handle_loops[i].vertices), points_of(m, r.tunnel_loops[j].vertices, &geo, +1)) == 0);
+      ht(i, j) = gauss_linking(points_of(m, r.handle_loops[i].vertices), points_of(m, r.tunnel_loops[j].vertices, &geo, -1));
     }
   }
   for(std::size_t i = 0; i < r.tunnel_loops.size(); ++i)
     for(std::size_t j = 0; j < r.tunnel_loops.size(); ++j) {
       INFO("tunnel " << i << " links tunnel " << j << " pushed inwards");
-      CHECK(gauss_linking(points_of(m, r.tunnel_loops[i]), points_of(m, r.tunnel_loops[j], &geo, -1)) == 0);
+      CHECK(gauss_linking(points_of(m, r.tunnel_loops[i].vertices), points_of(m, r.tunnel_loops[j].vertices, &geo, -1)) == 0);
     }
   if(int(r.tunnel_loops.size()) == genus) {
     // Handles and tunnels are dual bases: their linking matrix is unimodular.
