@@ -20,38 +20,28 @@
 //   build/bin/polycube_iga_benchmark topology            # all sizes
 //   build/bin/polycube_iga_benchmark --quick topology    # small meshes only
 
-#include "benchmark_registry.h"
+#include "bench_meshes.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polycube_IGA/IO/read_triangle_mesh.h>
 #include <CGAL/Polycube_IGA/Input_validation.h>
 #include <CGAL/Polycube_IGA/Surface_topology.h>
-#include <CGAL/Polycube_IGA/internal/cotangent_laplacian.h>
-#include <CGAL/Polycube_IGA/internal/mesh_graph.h>
-#include <CGAL/Polycube_IGA/internal/mesh_refinement.h>
-#include <CGAL/Polycube_IGA/internal/sparse_cholesky.h>
-#include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/IO/OFF.h>
 
 #include <chrono>
-#include <ctime>
 #include <filesystem>
 #include <limits>
 #include <string>
 #include <vector>
-
-#ifdef __linux__
-#include <sched.h>
-#endif
 
 namespace polycube_iga_bench {
 namespace {
 
 namespace PI = CGAL::Polycube_IGA;
 namespace PIP = CGAL::Polycube_IGA::parameters;
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
-using Mesh = CGAL::Surface_mesh<Point>;
+using meshes::Point;
+using meshes::Mesh;
+using meshes::One_core;
+using meshes::base_name;
+using meshes::process_cpu_seconds;
 
 struct Case
 {
@@ -77,46 +67,6 @@ const Case cases[] = {
   {"cgal/eight.off", 4, false},         //162,304, genus 2
 };
 
-/// Restricts the process to one CPU for the lifetime of the object (Linux), then restores.
-class One_core
-{
-public:
-  One_core()
-  {
-#ifdef __linux__
-    if(sched_getaffinity(0, sizeof(saved_), &saved_) == 0) {
-      cpu_set_t one;
-      CPU_ZERO(&one);
-      int cpu = sched_getcpu();
-      if(cpu < 0 || !CPU_ISSET(cpu, &saved_))
-        for(cpu = 0; cpu < CPU_SETSIZE && !CPU_ISSET(cpu, &saved_); ++cpu) {}
-      CPU_SET(cpu, &one);
-      pinned_ = sched_setaffinity(0, sizeof(one), &one) == 0;
-    }
-#endif
-  }
-  ~One_core()
-  {
-#ifdef __linux__
-    if(pinned_) sched_setaffinity(0, sizeof(saved_), &saved_);
-#endif
-  }
-  bool pinned() const { return pinned_; }
-
-private:
-  bool pinned_ = false;
-#ifdef __linux__
-  cpu_set_t saved_;
-#endif
-};
-
-double process_cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
-
-std::string base_name(const std::string& path)
-{
-  return std::filesystem::path(path).filename().string();
-}
-
 void run_case(const Options& opt, const Case& c, const std::filesystem::path& scratch)
 {
   const std::string source = opt.data_dir + "/" + c.file;
@@ -127,9 +77,10 @@ void run_case(const Options& opt, const Case& c, const std::filesystem::path& sc
   std::string path = source;
   if(c.subdivisions > 0) {
     Mesh m;
-    const PI::Validation_report r = PI::read_triangle_mesh(source, m, PIP::check_self_intersections(false));
-    if(!r.is_valid()) { std::cerr << "topology: skipping " << source << ": cannot read it\n"; return; }
-    for(int k = 0; k < c.subdivisions; ++k) PI::internal::subdivide_at_edge_midpoints(m, get(CGAL::vertex_point, m));
+    if(!meshes::read_subdivided(source, c.subdivisions, m)) {
+      std::cerr << "topology: skipping " << source << ": cannot read it\n";
+      return;
+    }
     path = (scratch / (std::filesystem::path(c.file).stem().string() + "_x" + std::to_string(c.subdivisions) + ".off")).string();
     if(!CGAL::IO::write_OFF(path, m, CGAL::parameters::stream_precision(17))) {
       std::cerr << "topology: cannot write " << path << "\n";
@@ -172,30 +123,8 @@ void run_case(const Options& opt, const Case& c, const std::filesystem::path& sc
   }
 
   // baseline: one CHOLMOD factorization + solve of the cotangent Laplacian (+ mass shift)
-  Eigen::SparseMatrix<double> A;
-  Eigen::VectorXd b;
-  const double t_assembly = best_time(1, [&] {
-    PI::internal::Mesh_graph<Mesh> graph(mesh, get(CGAL::vertex_point, mesh));
-    const Eigen::SparseMatrix<double> L = PI::internal::cotangent_laplacian(graph);
-    const Eigen::SparseMatrix<double> M = PI::internal::lumped_mass_matrix(graph);
-    const double mean_mass = M.sum() / double(std::max<Eigen::Index>(1, M.rows()));
-    A = L + (1e-8 / mean_mass) * M;
-    // Right-hand side M (x - mean x): orthogonal to the constants, a well-posed Poisson
-    // problem whose solution stays O(|b| / lambda_2) despite the tiny shift.
-    const int n = graph.number_of_vertices();
-    double mean_x = 0;
-    for(int v = 0; v < n; ++v) mean_x += M.coeff(v, v) * graph.position[v].x();
-    mean_x /= M.sum();
-    b.resize(n);
-    for(int v = 0; v < n; ++v) b[v] = M.coeff(v, v) * (graph.position[v].x() - mean_x);
-  });
-  double residual = 0;
-  const double t_baseline = best_time(opt.repetitions, [&] {
-    PI::internal::Sparse_cholesky solver;
-    solver.factor(A, "benchmark Laplacian");
-    const Eigen::MatrixXd x = solver.solve(b);
-    residual = (A * x - b).norm() / std::max(1e-300, b.norm());
-  });
+  double t_assembly = 0, residual = 0;
+  const double t_baseline = meshes::cholmod_laplacian_baseline(mesh, opt.repetitions, t_assembly, residual);
   if(residual > 1e-8) std::cerr << "topology: " << name << ": baseline residual " << residual << "\n";
 
   std::vector<std::pair<std::string, double>> extra = {
