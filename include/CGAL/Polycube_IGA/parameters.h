@@ -29,7 +29,12 @@ namespace Polycube_IGA {
   X(loop_edge_weight_t, loop_edge_weight)                                           \
   X(number_of_roots_t, number_of_roots)                                             \
   X(compute_tunnel_loops_t, compute_tunnel_loops)                                   \
-  X(maximum_refinements_t, maximum_refinements)
+  X(maximum_refinements_t, maximum_refinements)                                     \
+  /* pants decomposition */                                                         \
+  X(cut_criterion_t, cut_criterion)                                                 \
+  X(symmetry_plane_t, symmetry_plane)                                               \
+  X(criterion_strength_t, criterion_strength)                                       \
+  X(surface_topology_t, surface_topology)
 
 namespace internal_np {
 #define CGAL_POLYCUBE_IGA_DECLARE_TAG(TAG, NAME) enum TAG { NAME };

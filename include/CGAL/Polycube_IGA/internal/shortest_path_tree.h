@@ -34,15 +34,16 @@ struct Shortest_path_tree
   }
 };
 
-/// Shortest-path tree from `root`; `weight[e]` >= 0; vertices with `blocked[v]` are never
+/// Shortest-path tree (forest) from `roots` (all at distance 0); `weight[e]` >= 0; vertices with `blocked[v]` are never
 /// entered (except the root). Pass an empty `blocked` to allow all. The search stops at
 /// `max_distance`: farther vertices keep an infinite distance (a local search costs only
 /// the size of the ball it explores).
 template <class Graph>
-Shortest_path_tree shortest_path_tree(const Graph& g, int root, const std::vector<double>& weight,
+Shortest_path_tree shortest_path_tree(const Graph& g, const std::vector<int>& roots, const std::vector<double>& weight,
                                       const std::vector<bool>& blocked = {},
                                       double max_distance = std::numeric_limits<double>::infinity())
 {
+  const int root = roots.front();
   const int n = g.number_of_vertices();
   Shortest_path_tree t;
   t.root = root;
@@ -53,8 +54,7 @@ Shortest_path_tree shortest_path_tree(const Graph& g, int root, const std::vecto
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
   std::vector<bool> settled(n, false);
-  t.distance[root] = 0;
-  queue.push({0.0, root});
+  for(int r : roots) { t.distance[r] = 0; queue.push({0.0, r}); }
   while(!queue.empty()) {
     auto [d, v] = queue.top();
     queue.pop();
@@ -79,6 +79,15 @@ Shortest_path_tree shortest_path_tree(const Graph& g, int root, const std::vecto
     for(int v = 0; v < n; ++v)
       if(!settled[v]) { t.distance[v] = std::numeric_limits<double>::infinity(); t.parent_edge[v] = -1; }
   return t;
+}
+
+/// Single-root version.
+template <class Graph>
+Shortest_path_tree shortest_path_tree(const Graph& g, int root, const std::vector<double>& weight,
+                                      const std::vector<bool>& blocked = {},
+                                      double max_distance = std::numeric_limits<double>::infinity())
+{
+  return shortest_path_tree(g, std::vector<int>{root}, weight, blocked, max_distance);
 }
 
 /// Vertex path from the root's subtree: the loop closed by the non-tree edge `e`, trimmed

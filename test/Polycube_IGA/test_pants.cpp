@@ -1,0 +1,183 @@
+// Copyright (c) 2026 Polycube_IGA contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Pants_decomposition on genus 1-4 meshes with and without boundary and on generated plates
+// (genus 11; genus 5 with 7 boundary loops): counts 2g+b-2 and 3g+b-3, every pants a
+// connected genus-0 surface with 3 boundaries, cycles simple and pairwise disjoint,
+// neighbours consistent, and every cut cycle of a closed solid bounding inside it (its
+// Gauss linking number with every outward push-off of a homology basis is 0).
+
+#include "test_geometry.h"
+#include "test_support.h"
+
+#include <CGAL/Polycube_IGA/Pants_decomposition.h>
+
+#include <catch2/catch.hpp>
+
+using namespace test_support;
+namespace PI = CGAL::Polycube_IGA;
+namespace PIP = CGAL::Polycube_IGA::parameters;
+using Pants = PI::Pants_decomposition<Mesh>;
+
+namespace {
+
+void check_pants(const Mesh& input, const Pants::Result& r, int genus, int boundaries)
+{
+  CHECK(r.genus == genus);
+  CHECK(int(r.boundary_loops) == boundaries);
+  CHECK(int(r.pants.size()) == 2 * genus + boundaries - 2);
+  CHECK(int(r.number_of_cut_cycles()) == 3 * genus + boundaries - 3);
+  const PI::Pants_validation v = Pants::validate(input, r);
+  for(const auto& p : v.problems) INFO(p);
+  CHECK(v.is_valid());
+  // Neighbours: symmetric across every cycle.
+  for(std::size_t p = 0; p < r.pants.size(); ++p)
+    for(int s = 0; s < 3; ++s) {
+      const int c = r.pants[p].boundaries[s], q = r.pants[p].neighbours[s];
+      if(r.cycles[c].kind == PI::Pants_cycle<Mesh>::INPUT_BOUNDARY) { CHECK(q == -1); continue; }
+      REQUIRE(q >= 0);
+      const auto& other = r.pants[q];
+      bool found = false;
+      for(int t = 0; t < 3; ++t) found = found || (other.boundaries[t] == c && other.neighbours[t] == int(p));
+      CHECK(found);
+    }
+  // Each cycle appears as a boundary of one pants per side: input boundaries once, others twice.
+  std::vector<int> uses(r.cycles.size(), 0);
+  for(const auto& p : r.pants) for(int c : p.boundaries) ++uses[c];
+  for(std::size_t c = 0; c < r.cycles.size(); ++c)
+    CHECK(uses[c] == (r.cycles[c].kind == PI::Pants_cycle<Mesh>::INPUT_BOUNDARY ? 1 : 2));
+}
+
+/// On a closed solid, every cut cycle bounds inside: it links no outward push-off.
+void check_cycles_bound_inside(const Mesh& input, const Pants::Result& r)
+{
+  const auto topo = PI::Surface_topology<Mesh>()(input);
+  const Mesh& tm = topo.loop_mesh(input);
+  const Geometry geo = outward_geometry(tm);
+  for(const auto& c : r.cycles) {
+    if(c.kind == PI::Pants_cycle<Mesh>::INPUT_BOUNDARY) continue;
+    std::vector<V3> pts;
+    for(const auto& p : c.points) pts.emplace_back(p[0], p[1], p[2]);
+    for(const auto& b : topo.homology_basis)
+      CHECK(gauss_linking(pts, points_of(tm, b.vertices, &geo, +1)) == 0);
+  }
+}
+
+} // namespace
+
+#define PANTS_CASE(FILE, GENUS, BOUNDARIES, LINKING)                                     \
+  TEST_CASE("pants decomposition of " FILE, "[pants][corpus]")                          \
+  {                                                                                    \
+    const Mesh m = load(data(FILE));                                                   \
+    const Pants::Result r = Pants()(m);                                                \
+    check_pants(m, r, GENUS, BOUNDARIES);                                              \
+    if(BOUNDARIES == 0 && LINKING) check_cycles_bound_inside(m, r);                    \
+  }
+
+PANTS_CASE("eight.off", 2, 0, true)
+PANTS_CASE("double-torus-example.off", 2, 0, true)
+PANTS_CASE("joint.off", 2, 0, true)
+PANTS_CASE("double-torus-3-holes.off", 2, 3, true)
+PANTS_CASE("elephant.off", 3, 0, true)
+PANTS_CASE("3holes.obj", 3, 0, true)
+// 19 vertices: its vertex normals are no valid push-off directions for the test's own check.
+PANTS_CASE("3torus.off", 3, 0, false)
+PANTS_CASE("anchor.off", 4, 0, true)
+PANTS_CASE("mech-holes-shark.off", 0, 4, true)
+
+TEST_CASE("a single pants patch passes through unchanged", "[pants][corpus]")
+{
+  const Mesh m = load(data("head.off"));
+  const Pants::Result r = Pants()(m);
+  check_pants(m, r, 0, 3);
+  REQUIRE(r.pants.size() == 1);
+  CHECK(r.pants[0].faces.size() == num_faces(m));
+  CHECK(r.refinements == 0);
+  for(const auto& c : r.cycles) CHECK(c.kind == PI::Pants_cycle<Mesh>::INPUT_BOUNDARY);
+}
+
+TEST_CASE("generated plate of genus 11", "[pants][generated]")
+{
+  const Mesh m = load(write_text("pants_g11.off", voxel_plate_with(11, 0)));
+  const Pants::Result r = Pants()(m);
+  check_pants(m, r, 11, 0);
+}
+
+TEST_CASE("generated plate of genus 5 with 7 boundary loops", "[pants][generated]")
+{
+  const Mesh m = load(write_text("pants_g5_b7.off", voxel_plate_with(5, 7)));
+  check_pants(m, Pants()(m), 5, 7);
+}
+
+TEST_CASE("generated plates of genus 1 with 1 and 2 boundary loops", "[pants][generated]")
+{
+  const Mesh m1 = load(write_text("pants_g1_b1.off", voxel_plate_with(1, 1)));
+  check_pants(m1, Pants()(m1), 1, 1);
+  const Mesh m2 = load(write_text("pants_g1_b2.off", voxel_plate_with(1, 2)));
+  check_pants(m2, Pants()(m2), 1, 2);
+}
+
+TEST_CASE("surfaces with non-negative Euler characteristic have no pants decomposition", "[pants][bad]")
+{
+  for(const char* file : {"sphere.off", "mushroom.off", "blade.off", "torus.obj"}) {
+    INFO(file);
+    const Mesh m = load(data(file));
+    try {
+      Pants()(m);
+      FAIL("no error");
+    } catch(const PI::Unsupported_topology_error& e) {
+      CHECK(e.reason() == "no_pants_decomposition");
+      CHECK(e.exit_code() == 3);
+    }
+  }
+}
+
+TEST_CASE("pants decomposition is deterministic", "[pants][determinism]")
+{
+  const Mesh m = load(data("elephant.off"));
+  const Pants::Result a = Pants()(m), b = Pants()(m);
+  REQUIRE(a.cycles.size() == b.cycles.size());
+  for(std::size_t c = 0; c < a.cycles.size(); ++c) CHECK(a.cycles[c].vertices == b.cycles[c].vertices);
+  for(std::size_t p = 0; p < a.pants.size(); ++p) CHECK(a.pants[p].faces == b.pants[p].faces);
+}
+
+TEST_CASE("geometric criteria give valid decompositions", "[pants][criteria]")
+{
+  const Mesh m = load(data("elephant.off"));
+  const Pants::Result minima = Pants()(m, PIP::cut_criterion(PI::Cut_criterion::MINIMA_RULE));
+  check_pants(m, minima, 3, 0);
+  const Pants::Result sym = Pants()(m, PIP::cut_criterion(PI::Cut_criterion::SYMMETRY)
+                                          .symmetry_plane(std::array<double, 4>{0, 0, 1, 0}));
+  check_pants(m, sym, 3, 0);
+  // A precomputed topology is reused and gives the same result.
+  const auto topo = PI::Surface_topology<Mesh>()(m, PIP::compute_tunnel_loops(false));
+  const Pants::Result again = Pants()(m, PIP::surface_topology(topo));
+  const Pants::Result plain = Pants()(m);
+  REQUIRE(again.cycles.size() == plain.cycles.size());
+  for(std::size_t c = 0; c < plain.cycles.size(); ++c) CHECK(again.cycles[c].vertices == plain.cycles[c].vertices);
+}
+
+TEST_CASE("CLI: pants --json and --write-pants", "[cli][pants]")
+{
+  const std::string dir = temp_path("pants_out");
+  REQUIRE(std::system(("mkdir -p '" + dir + "'").c_str()) == 0);
+  Cli_result r = run_cli("pants --json --write-pants '" + dir + "' '" + data("double-torus-3-holes.off") + "'");
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("\"genus\":2,") != std::string::npos);
+  CHECK(r.out.find("\"boundary_loops\":3,") != std::string::npos);
+  std::size_t pants = 0;
+  for(std::size_t at = r.out.find("{\"faces\":"); at != std::string::npos; at = r.out.find("{\"faces\":", at + 1)) ++pants;
+  CHECK(pants == 5);
+  for(int k = 0; k < 5; ++k) {
+    const Mesh p = load(dir + "/pants_" + std::to_string(k) + ".off");
+    const auto t = PI::Surface_topology<Mesh>()(p);
+    CHECK(t.genus == 0);
+    CHECK(t.number_of_boundary_loops() == 3);
+  }
+  Cli_result sphere = run_cli("pants --json '" + data("sphere.off") + "'");
+  CHECK(sphere.exit_code == 3);
+  CHECK(sphere.err.rfind("error: no_pants_decomposition: ", 0) == 0);
+  CHECK(sphere.out.empty());
+  CHECK(run_cli("pants --criterion bogus '" + data("eight.off") + "'").exit_code == 2);
+  CHECK(run_cli("pants --write-pants /nonexistent/dir '" + data("eight.off") + "'").exit_code == 2);
+}
