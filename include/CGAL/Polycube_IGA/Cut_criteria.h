@@ -11,7 +11,7 @@
 //   SYMMETRY     w(e) = l(e) * (eps + strength * 0.5 [d(v_i) + d(v_j)] / D),   eps = 0.01
 //                d(v) = distance of v to the plane a x + b y + c z + d = 0, D = diagonal of
 //                the bounding box of the vertices.
-//   MINIMA_RULE  w(e) = l(e) * exp(clamp(strength * 0.5 [r(v_i) + r(v_j)], -50, 50))
+//   MINIMA_RULE  w(e) = l(e) * exp(clamp(strength * 0.5 [r(v_i) + r(v_j)], -3, 3))
 //                r(v) = (kmin(v) - mu) / sigma, the normalised minimum principal curvature
 //                (see normalized_minimum_curvature below).
 //
@@ -33,8 +33,9 @@
 //    distance is divided by the bounding-box diagonal so the density is scale invariant.
 //  - MINIMA_RULE: exp(strength * r) is positive, equals 1 for an average curvature, is < 1 on
 //    concave regions (r < 0, the cuts the minima rule asks for) and > 1 on convex ones;
-//    r is already dimensionless. The exponent is clamped to [-50, 50] so the weights stay
-//    finite and positive.
+//    r is already dimensionless. The exponent is clamped to [-3, 3] (weights within a factor
+//    e^6 of each other): on CAD meshes with sharp creases r reaches -20 and unclamped
+//    weights spanning 1e9 would make cuts follow creases whatever their length.
 //  - Every weight is at last raised to at least 1e-12 * D (or 1e-300 for a mesh of one
 //    point), so a zero-length edge does not get a zero capacity.
 //
@@ -247,7 +248,7 @@ std::vector<double> cut_edge_weights(const internal::Mesh_graph<TriangleMesh>& g
     const std::vector<double> r = normalized_minimum_curvature(g);
     for(int e = 0; e < ne; ++e) {
       const double x = o.strength * 0.5 * (r[g.edge_vertices[e][0]] + r[g.edge_vertices[e][1]]);
-      w[e] *= std::exp(std::clamp(x, -50.0, 50.0));
+      w[e] *= std::exp(std::clamp(x, -3.0, 3.0));
     }
     break;
   }
