@@ -369,6 +369,33 @@ TEST_CASE("surface fitting converges at the expected rate", "[spline]")
   CHECK(errors[2] < 1e-5);
 }
 
+TEST_CASE("named parameters set the fitting weights and the spline space", "[spline]")
+{
+  const int m = 25;
+  PI::Point_grid g(m, m);
+  for(int j = 0; j < m; ++j)
+    for(int i = 0; i < m; ++i) {
+      const double x = double(i) / (m - 1), y = double(j) / (m - 1);
+      g(i, j) = Vec(x, y, std::sin(3 * x) * std::cos(2 * y));
+    }
+  namespace PIP = CGAL::Polycube_IGA::parameters;
+  const auto loose = PI::fit_bspline_surface(g, PIP::spline_degree(2).number_of_spans(5).bending_weight(0.0));
+  CHECK(loose.spline.degree(0) == 2);
+  CHECK(loose.spline.number_of_control_points(1) == 7);
+  // Heavy bending regularisation (lambda2) flattens the surface: a larger fitting error.
+  const auto stiff = PI::fit_bspline_surface(g, PIP::spline_degree(2).number_of_spans(5).bending_weight(10.0));
+  CHECK(stiff.max_error > 10 * loose.max_error);
+  // The named form equals the struct form.
+  PI::Surface_fitting_options o;
+  o.degree_u = o.degree_v = 2;
+  o.spans_u = o.spans_v = 5;
+  o.bending_weight = 0.0;
+  o.stretching_weight = 0.5;
+  const auto a = PI::fit_bspline_surface(g, o);
+  const auto b = PI::fit_bspline_surface(g, PIP::spline_degree(2).number_of_spans(5).bending_weight(0.0).stretching_weight(0.5));
+  CHECK(a.spline.control_points() == b.spline.control_points());
+}
+
 TEST_CASE("fitting with chord length and regularization, neighbours share their boundary exactly", "[spline]")
 {
   // Two faces of a cylinder-like surface meeting along x = 0, fitted separately.

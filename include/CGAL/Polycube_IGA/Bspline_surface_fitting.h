@@ -18,6 +18,7 @@
 #include <CGAL/Polycube_IGA/Bspline_refinement.h>
 #include <CGAL/Polycube_IGA/Tensor_bspline_surface.h>
 #include <CGAL/Polycube_IGA/internal/spline_gram.h>
+#include <CGAL/Polycube_IGA/parameters.h>
 
 #include <algorithm>
 #include <array>
@@ -340,6 +341,24 @@ inline Surface_fitting_result fit_bspline_surface(const Point_grid& g,
   res.spline = Tensor_bspline_surface({ku, kv}, to_points(x));
   measure_errors<2>(res, g.points, {g.size_u, g.size_v});
   return res;
+}
+
+/*!
+ * Named-parameter form of fit_bspline_surface(): `stretching_weight` (lambda1),
+ * `bending_weight` (lambda2), `data_weight` (lambda3), `spline_degree` and
+ * `number_of_spans` (both directions) override the corresponding fields of `base`.
+ * Example: `fit_bspline_surface(grid, parameters::bending_weight(1e-4).spline_degree(3))`.
+ */
+template <class NamedParameters>
+Surface_fitting_result fit_bspline_surface(const Point_grid& g, const NamedParameters& np,
+                                           Surface_fitting_options base = Surface_fitting_options())
+{
+  base.stretching_weight = option(np, internal_np::stretching_weight, base.stretching_weight);
+  base.bending_weight = option(np, internal_np::bending_weight, base.bending_weight);
+  base.data_weight = option(np, internal_np::data_weight, base.data_weight);
+  base.degree_u = base.degree_v = int(option(np, internal_np::spline_degree, base.degree_u));
+  base.spans_u = base.spans_v = int(option(np, internal_np::number_of_spans, base.spans_u));
+  return fit_bspline_surface(g, base);
 }
 
 } // namespace Polycube_IGA

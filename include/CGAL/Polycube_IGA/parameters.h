@@ -34,7 +34,13 @@ namespace Polycube_IGA {
   X(cut_criterion_t, cut_criterion)                                                 \
   X(symmetry_plane_t, symmetry_plane)                                               \
   X(criterion_strength_t, criterion_strength)                                       \
-  X(surface_topology_t, surface_topology)
+  X(surface_topology_t, surface_topology)                                           \
+  /* spline fitting (lambda_1..3 of eq. 4.1) */                                     \
+  X(stretching_weight_t, stretching_weight)                                         \
+  X(bending_weight_t, bending_weight)                                               \
+  X(data_weight_t, data_weight)                                                     \
+  X(spline_degree_t, spline_degree)                                                 \
+  X(number_of_spans_t, number_of_spans)
 
 namespace internal_np {
 #define CGAL_POLYCUBE_IGA_DECLARE_TAG(TAG, NAME) enum TAG { NAME };
