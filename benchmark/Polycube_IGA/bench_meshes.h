@@ -70,6 +70,14 @@ private:
 #endif
 };
 
+/// One benchmark input: a shared-data mesh, subdivided `subdivisions` times.
+struct Case
+{
+  const char* file;   ///< relative to the data directory
+  int subdivisions;   ///< midpoint subdivisions (x4 faces each)
+  bool quick;         ///< part of --quick
+};
+
 inline double process_cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
 
 inline std::string base_name(const std::string& path)

@@ -32,12 +32,7 @@ namespace PI = CGAL::Polycube_IGA;
 namespace PIP = CGAL::Polycube_IGA::parameters;
 using meshes::Mesh;
 
-struct Case
-{
-  const char* file;   ///< relative to the data directory
-  int subdivisions;   ///< midpoint subdivisions (x4 faces each)
-  bool quick;         ///< part of --quick
-};
+using meshes::Case;
 
 // Growing sizes; 3holes x2 (63,712 faces, genus 3) is the target case of issue 4
 // ("under 2 s for a 50k-face genus-3 mesh").

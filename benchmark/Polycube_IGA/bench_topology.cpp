@@ -43,12 +43,7 @@ using meshes::One_core;
 using meshes::base_name;
 using meshes::process_cpu_seconds;
 
-struct Case
-{
-  const char* file;   ///< relative to the data directory
-  int subdivisions;   ///< midpoint subdivisions (x4 faces each)
-  bool quick;         ///< part of --quick
-};
+using meshes::Case;
 
 // Growing sizes; the genus-3 3holes x2 (63,712 faces) is the target case of the issue
 // ("a 50k-face genus-3 mesh under 1 s on one core").
