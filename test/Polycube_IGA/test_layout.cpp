@@ -1,0 +1,77 @@
+// Copyright (c) 2026 Polycube_IGA contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Polycube_layout::validate() on layouts known by construction, and on broken copies of
+// them: every check must be able to fail.
+
+#include "layout_fixtures.h"
+
+#include <catch2/catch.hpp>
+
+using namespace test_support;
+
+namespace {
+bool mentions(const CGAL::Polycube_IGA::Layout_validation& v, const std::string& what)
+{
+  for(const auto& p : v.problems)
+    if(p.find(what) != std::string::npos) return true;
+  return false;
+}
+} // namespace
+
+TEST_CASE("layout validate accepts closed and open box chains", "[layout]")
+{
+  for(bool open : {false, true})
+    for(int k : {1, 3}) {
+      const Layout L = box_chain_layout(k, 3, open);
+      const auto v = L.validate();
+      INFO((v.problems.empty() ? std::string() : v.problems.front()));
+      CHECK(v.is_valid());
+      CHECK(v.euler_surface == (open ? 0 : 2));
+      CHECK(v.euler_solid == 1);
+      CHECK(v.minimum_valence == 3);
+      CHECK(L.cuboids.size() == std::size_t(k));
+      CHECK(L.interfaces().size() == std::size_t(k - 1));
+    }
+}
+
+TEST_CASE("layout validate names broken layouts", "[layout]")
+{
+  const Layout good = box_chain_layout(2, 3);
+  {
+    Layout L = good; // a face in two patches
+    L.patches[1].faces.push_back(L.patches[0].faces.front());
+    CHECK(mentions(L.validate(), "overlaps"));
+  }
+  {
+    Layout L = good; // a face in no patch
+    L.patches[0].faces.pop_back();
+    CHECK(mentions(L.validate(), "in no patch"));
+  }
+  {
+    Layout L = good; // corners out of order
+    std::swap(L.patches[0].corners[1], L.patches[0].corners[3]);
+    CHECK(!L.validate().is_valid());
+  }
+  {
+    Layout L = good; // an arc with a gap
+    L.arcs[0].vertices.erase(L.arcs[0].vertices.begin() + 1);
+    CHECK(mentions(L.validate(), "non-adjacent"));
+  }
+  {
+    Layout L = good; // a cuboid pointing at the wrong patch
+    L.cuboids[0].patches[1] = L.cuboids[1].patches[1];
+    CHECK(mentions(L.validate(), "not bounded by its patch"));
+  }
+  {
+    Layout L = good; // the interface made a cap: used by two cuboids, and wrong Euler count
+    for(auto& p : L.patches)
+      if(p.kind == Layout::INTERFACE) p.kind = Layout::CAP;
+    CHECK(mentions(L.validate(), "used by 2 cuboids"));
+  }
+  {
+    Layout L = good; // claims the wrong genus
+    L.genus = 1;
+    CHECK(mentions(L.validate(), "Euler characteristic"));
+  }
+}
