@@ -40,7 +40,10 @@ namespace Polycube_IGA {
   X(bending_weight_t, bending_weight)                                               \
   X(data_weight_t, data_weight)                                                     \
   X(spline_degree_t, spline_degree)                                                 \
-  X(number_of_spans_t, number_of_spans)
+  X(number_of_spans_t, number_of_spans)                                             \
+  /* patch sampling */                                                              \
+  X(grid_resolution_t, grid_resolution)                                             \
+  X(smooth_interior_patches_t, smooth_interior_patches)
 
 namespace internal_np {
 #define CGAL_POLYCUBE_IGA_DECLARE_TAG(TAG, NAME) enum TAG { NAME };
