@@ -75,3 +75,32 @@ TEST_CASE("layout validate names broken layouts", "[layout]")
     CHECK(mentions(L.validate(), "Euler characteristic"));
   }
 }
+
+#include <CGAL/Polycube_IGA/internal/layout_assembly.h>
+
+TEST_CASE("layout assembly rebuilds patches and cuboids from nodes and arcs", "[layout]")
+{
+  for(bool open : {false, true}) {
+    const Layout ref = box_chain_layout(3, 2, open);
+    Layout L = ref;
+    L.patches.clear();
+    L.cuboids.clear();
+    std::vector<CGAL::Polycube_IGA::internal::Interior_quad> interior;
+    for(const auto& p : ref.patches)
+      if(p.kind != Layout::SURFACE) interior.push_back({int(p.kind), p.corners});
+    std::vector<std::array<std::size_t, 8>> cuboids;
+    for(const auto& c : ref.cuboids) cuboids.push_back(c.nodes);
+    CGAL::Polycube_IGA::internal::assemble_layout(L, interior, cuboids, {});
+    const auto v = L.validate();
+    INFO((v.problems.empty() ? std::string() : v.problems.front()));
+    CHECK(v.is_valid());
+    CHECK(L.patches.size() == ref.patches.size());
+    CHECK(L.number_of_surface_patches() == ref.number_of_surface_patches());
+    CHECK(L.cuboids.size() == ref.cuboids.size());
+    // An arc removed: two patches merge and the assembly must refuse.
+    Layout broken = ref;
+    broken.arcs.erase(broken.arcs.begin());
+    broken.patches.clear();
+    CHECK_THROWS_AS(CGAL::Polycube_IGA::internal::assemble_layout(broken, interior, cuboids, {}), CGAL::Polycube_IGA::Internal_error);
+  }
+}
