@@ -1,0 +1,397 @@
+// Copyright (c) 2026 Polycube_IGA contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// The first end-to-end pipeline: Polycube_layout -> patch grids (Patch_sampling.h) ->
+// one trivariate B-spline per cuboid by the §4.1 recipe (edge curves, faces fitted with
+// their edges fixed, Coons + harmonic interior, as fit_bspline_volume() does per cuboid) ->
+// Multipatch_volume with the layout's interfaces declared, plus its quality (Quality.h) and
+// its fidelity to the mesh (Boundary_distance.h). By default the curves and faces are fitted
+// once per layout arc and patch and shared by the cuboids, so the two sides of an interface
+// have bit-identical control nets whatever the cuboids' frames; fitting each cuboid on its
+// own with fit_bspline_volume() is an option (the faces then agree to rounding only).
+//
+// Per cuboid, side s gets the grid of its patch re-indexed by the symmetry of the square
+// that sends the patch's corners onto Polycube_layout::side_nodes(cuboid, s), so every side
+// grid runs along the cuboid's local directions. Layouts may come with left-handed cuboid
+// frames; such a cuboid (negative volume enclosed by its six side grids, oriented by the
+// local frame) is fitted with its u direction reversed, so every patch has det J > 0 where
+// the fit is valid. Interfaces are declared from the layout (compute_topology() finds the
+// same ones geometrically), boundaries are the remaining sides.
+
+#ifndef CGAL_POLYCUBE_IGA_LAYOUT_VOLUME_H
+#define CGAL_POLYCUBE_IGA_LAYOUT_VOLUME_H
+
+#include <CGAL/Polycube_IGA/Boundary_distance.h>
+#include <CGAL/Polycube_IGA/Bspline_volume_construction.h>
+#include <CGAL/Polycube_IGA/Multipatch_volume.h>
+#include <CGAL/Polycube_IGA/Patch_sampling.h>
+#include <CGAL/Polycube_IGA/Quality.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Polycube_IGA {
+
+/// Options of layout_volume().
+struct Layout_volume_options
+{
+  Patch_sampling_options sampling; ///< N (grid_segments, default 16) and the interior-patch fill
+  int degree = 3;                  ///< spline degree in every direction
+  /// Uniform knot spans per direction; 0 picks max(1, N / 4): at least 4 samples per span,
+  /// so the least-squares data term, not the bending regulariser, determines the fit.
+  int spans = 0;
+  double stretching_weight = 0., bending_weight = 1e-6, data_weight = 1.; ///< lambda1..3 (eq. 4.1)
+  Parameterization parameterization = Parameterization::chord_length;
+  Volume_construction_options construction;
+  /// Fit every cuboid on its own with fit_bspline_volume() from its six side grids. By
+  /// default each arc and patch is fitted once and shared, which makes the two sides of an
+  /// interface bit-identical; per cuboid, they agree to rounding only (and cost twice).
+  bool per_cuboid_fit = false;
+  bool evaluate_quality = true;        ///< Jacobians, interface conformity, boundary distance
+  int quality_samples_per_span = 5;    ///< Jacobian and conformity sampling
+  int distance_samples_per_direction = 32; ///< per boundary side, for the Hausdorff distance
+  Jacobian_bound_options bound;
+};
+
+/// Result of layout_volume(): the model, what it was fitted to and how good it is.
+struct Layout_volume_result
+{
+  Multipatch_volume volume;  ///< patch c is cuboid c; interfaces from the layout, other sides boundaries
+  Patch_grids samples;       ///< the per-patch grids the faces were fitted to
+  int degree = 0, spans = 0;
+  /// Per cuboid: fitted with u reversed because its layout frame is left-handed.
+  std::vector<bool> mirrored;
+  /// Per cuboid: side s (1..6) of the volume patch is side layout_side[c][s-1] of the layout
+  /// cuboid (the identity unless mirrored, which swaps 1 and 2).
+  std::vector<std::array<int, 6>> layout_side;
+  /// Per cuboid: signed volume enclosed by its six side grids in the layout's frame.
+  std::vector<double> enclosed_volume;
+
+  bool quality_evaluated = false;
+  Multipatch_quality quality;  ///< sampled and certified Jacobians per patch, interface conformity
+  Boundary_distance distance;  ///< two-sided Hausdorff distance, boundary sides on SURFACE patches vs the mesh
+
+  double sampling_seconds = 0., fitting_seconds = 0., quality_seconds = 0.;
+};
+
+namespace internal {
+
+/// Grid index (a, b) of a cuboid side -> grid index of the patch, for symmetry `sym` of the
+/// square: bit 0 swaps, bit 1 reverses the first resulting index, bit 2 the second.
+inline std::array<int, 2> square_symmetry(int sym, int a, int b, int N)
+{
+  int x = a, y = b;
+  if(sym & 1) std::swap(x, y);
+  if(sym & 2) x = N - x;
+  if(sym & 4) y = N - y;
+  return {{x, y}};
+}
+
+/// Patch corner (0..3) at the unit-square grid corner (i, j) in {0,1}^2.
+inline int patch_corner_at(int i, int j) { return i == 0 ? (j == 0 ? 0 : 3) : (j == 0 ? 1 : 2); }
+
+/// The symmetry of the square (see square_symmetry()) that sends the index (a, b) of side s
+/// of cuboid `cu` (its two remaining local directions, increasing) to the index of its
+/// patch's grid: the one matching the patch's corners to Polycube_layout::side_nodes().
+template <class Layout>
+int side_symmetry(const Layout& L, const typename Layout::Cuboid& cu, int s)
+{
+  const std::array<std::size_t, 4> sn = Layout::side_nodes(cu, s);
+  const std::size_t p = cu.patches[std::size_t(s - 1)];
+  if(p >= L.patches.size()) throw Invalid_input_error("invalid_layout", "a cuboid lists a patch that does not exist");
+  const auto& corners = L.patches[p].corners;
+  for(int sym = 0; sym < 8; ++sym) {
+    bool ok = true;
+    for(int q = 0; q < 4 && ok; ++q) {
+      const std::array<int, 2> ij = square_symmetry(sym, q & 1, q >> 1, 1);
+      ok = corners[std::size_t(patch_corner_at(ij[0], ij[1]))] == sn[std::size_t(q)];
+    }
+    if(ok) return sym;
+  }
+  throw Invalid_input_error("invalid_layout", "side " + std::to_string(s) + " of a cuboid is not bounded by the corners of patch " +
+                                                  std::to_string(p) + " in a compatible order");
+}
+
+/// The grid of side s of cuboid `cu`, indexed by its two remaining local directions
+/// increasing (the layout fit_bspline_volume() expects).
+template <class Layout>
+Point_grid cuboid_side_grid(const Layout& L, const Patch_grids& G, const typename Layout::Cuboid& cu, int s)
+{
+  const int sym = side_symmetry(L, cu, s);
+  const int N = G.segments;
+  const Point_grid& g = G.grids[cu.patches[std::size_t(s - 1)]];
+  Point_grid out(N + 1, N + 1);
+  for(int b = 0; b <= N; ++b)
+    for(int a = 0; a <= N; ++a) {
+      const std::array<int, 2> ij = square_symmetry(sym, a, b, N);
+      out(a, b) = g(ij[0], ij[1]);
+    }
+  return out;
+}
+
+/// The same surface with its control net re-indexed by symmetry `sym` (exact: control points
+/// are only moved). Valid because both directions share one knot vector symmetric about the
+/// middle of its domain (uniform knots), so reversing a direction is reversing its points.
+inline Tensor_bspline_surface transformed_surface(const Tensor_bspline_surface& f, int sym)
+{
+  const int n = f.number_of_control_points(0);
+  std::vector<Eigen::Vector3d> pts(std::size_t(n) * std::size_t(n));
+  for(int b = 0; b < n; ++b)
+    for(int a = 0; a < n; ++a) {
+      const std::array<int, 2> ij = square_symmetry(sym, a, b, n - 1);
+      pts[std::size_t(a) + std::size_t(n) * std::size_t(b)] = f.control_point({{ij[0], ij[1]}});
+    }
+  return Tensor_bspline_surface({{f.knot_vector(0), f.knot_vector(1)}}, std::move(pts));
+}
+
+/// Signed volume enclosed by six side grids, each triangle oriented by the local frame
+/// (side (d, end) has outward normal +-(X_a x X_b): + for u1, v0, w1). Positive for a
+/// right-handed cuboid. The grids share their edges exactly, so the surface is closed and
+/// the value does not depend on the origin; the corner centroid is used for accuracy.
+inline double enclosed_volume(const std::array<Point_grid, 6>& grids)
+{
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for(const auto& g : grids) c += (g(0, 0) + g(g.size_u - 1, g.size_v - 1)) / 12.;
+  double vol = 0.;
+  for(int s = 1; s <= 6; ++s) {
+    const Point_grid& g = grids[std::size_t(s - 1)];
+    const int d = side_direction(s);
+    const double sign = (side_parameter(s) ? 1. : -1.) * (d == 1 ? -1. : 1.);
+    double part = 0.;
+    for(int j = 0; j + 1 < g.size_v; ++j)
+      for(int i = 0; i + 1 < g.size_u; ++i) {
+        const Eigen::Vector3d p00 = g(i, j) - c, p10 = g(i + 1, j) - c, p11 = g(i + 1, j + 1) - c, p01 = g(i, j + 1) - c;
+        part += p00.dot(p10.cross(p11)) + p00.dot(p11.cross(p01));
+      }
+    vol += sign * part / 6.;
+  }
+  return vol;
+}
+
+/// The same cuboid with local u reversed: nodes (i,j,k) -> (1-i,j,k), sides 1 and 2 swapped.
+template <class Cuboid>
+Cuboid mirror_u(const Cuboid& cu)
+{
+  Cuboid m = cu;
+  for(int k = 0; k < 2; ++k)
+    for(int j = 0; j < 2; ++j)
+      for(int i = 0; i < 2; ++i) m.nodes[std::size_t(i + 2 * j + 4 * k)] = cu.nodes[std::size_t((1 - i) + 2 * j + 4 * k)];
+  std::swap(m.patches[0], m.patches[1]);
+  return m;
+}
+
+/// G+Smo interface data between side sa of a cuboid with side nodes na and side sb of one
+/// with side nodes nb (both as side_nodes() orders them): tangential direction k of the
+/// first runs from na[0] to na[1 << k]; where those nodes sit in nb says which direction of
+/// the second it becomes and in which sense.
+inline Patch_interface interface_from_nodes(std::size_t pa, int sa, const std::array<std::size_t, 4>& na, std::size_t pb,
+                                            int sb, const std::array<std::size_t, 4>& nb)
+{
+  auto where = [&](std::size_t node) {
+    for(int q = 0; q < 4; ++q)
+      if(nb[std::size_t(q)] == node) return q;
+    throw Invalid_input_error("invalid_layout", "the two sides of an interface do not share their corners");
+  };
+  const int da = side_direction(sa), db = side_direction(sb);
+  const std::array<int, 2> ta{{da == 0 ? 1 : 0, da == 2 ? 1 : 2}}, tb{{db == 0 ? 1 : 0, db == 2 ? 1 : 2}};
+  Patch_interface f;
+  f.first = {pa, sa};
+  f.second = {pb, sb};
+  const int q0 = where(na[0]);
+  for(int k = 0; k < 2; ++k) {
+    const int q1 = where(na[std::size_t(1 << k)]);
+    const int diff = q0 ^ q1;
+    if(diff != 1 && diff != 2)
+      throw Invalid_input_error("invalid_layout", "the two sides of an interface do not share their corners in a compatible order");
+    const int bit = diff == 1 ? 0 : 1;
+    f.direction_map[std::size_t(ta[std::size_t(k)])] = tb[std::size_t(bit)];
+    f.direction_orientation[std::size_t(ta[std::size_t(k)])] = ((q1 >> bit) & 1) != 0;
+  }
+  f.direction_map[std::size_t(da)] = db;
+  f.direction_orientation[std::size_t(da)] = side_parameter(sa) != side_parameter(sb);
+  return f;
+}
+
+} // namespace internal
+
+/*!
+ * \ingroup PkgPolycubeIGARef
+ * Builds the multipatch volume of `layout` from its patch grids `samples`
+ * (sample_layout_patches()): one volume per cuboid (§4.1 recipe) with uniform knots of
+ * degree `o.degree` and `o.spans` spans (0: max(1, N/4)) in every direction, the layout's
+ * interfaces declared, left-handed cuboids fitted mirrored, and (if `o.evaluate_quality`)
+ * per-patch Jacobians, interface conformity and the boundary Hausdorff distance to
+ * `layout.mesh` measured on the sides that lie on SURFACE patches (caps span boundary
+ * loops, the mesh has nothing there). Deterministic.
+ */
+template <class Point_3>
+Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout, Patch_grids samples,
+                                   const Layout_volume_options& o = Layout_volume_options())
+{
+  using Layout = Polycube_layout<Point_3>;
+  using Clock = std::chrono::steady_clock;
+  const int N = samples.segments;
+  bool fits = N >= 1 && samples.grids.size() == layout.patches.size() && samples.arc_samples.size() == layout.arcs.size();
+  for(std::size_t p = 0; fits && p < samples.grids.size(); ++p)
+    fits = samples.grids[p].size_u == N + 1 && samples.grids[p].size_v == N + 1 &&
+           samples.grids[p].points.size() == std::size_t(N + 1) * std::size_t(N + 1);
+  for(std::size_t a = 0; fits && a < samples.arc_samples.size(); ++a) fits = samples.arc_samples[a].size() == std::size_t(N + 1);
+  if(!fits) throw Invalid_input_error("invalid_grid", "the patch grids do not belong to this layout");
+  if(o.degree < 1) throw Invalid_input_error("invalid_degree", "the spline degree must be at least 1");
+  Layout_volume_result r;
+  r.degree = o.degree;
+  r.spans = o.spans > 0 ? o.spans : std::max(1, N / 4);
+  const auto t0 = Clock::now();
+
+  Volume_fitting_options vo;
+  const Knot_vector kv = Knot_vector::uniform(r.degree, r.spans);
+  vo.knots = {{kv, kv, kv}};
+  vo.stretching_weight = o.stretching_weight;
+  vo.bending_weight = o.bending_weight;
+  vo.data_weight = o.data_weight;
+  vo.parameterization = o.parameterization;
+  vo.construction = o.construction;
+
+  // The §4.1 recipe once per layout element rather than per cuboid: every arc's curve is
+  // fitted once (ends interpolated), every patch's surface once with its four arc curves
+  // fixed, and each cuboid only re-indexes these control nets. The two cuboids of an
+  // interface thus get bit-identical control nets on it, and every edge is shared exactly.
+  std::vector<Tensor_bspline_surface> patch_surface;
+  if(!o.per_cuboid_fit) {
+    Curve_fitting_options co;
+    co.knots = kv;
+    co.stretching_weight = o.stretching_weight;
+    co.bending_weight = o.bending_weight;
+    co.data_weight = o.data_weight;
+    co.parameterization = o.parameterization;
+    std::vector<Bspline_curve> arc_curve;
+    arc_curve.reserve(layout.arcs.size());
+    for(const auto& pts : samples.arc_samples) arc_curve.push_back(fit_bspline_curve(pts, co).spline);
+    // Arc a's curve run from node `from` (reversal keeps the knots: they are symmetric).
+    auto oriented = [&](std::size_t a, std::size_t from) {
+      const Bspline_curve& c = arc_curve[a];
+      if(layout.arcs[a].nodes[0] == from) return c;
+      return Bspline_curve({{c.knot_vector(0)}},
+                           std::vector<Eigen::Vector3d>(c.control_points().rbegin(), c.control_points().rend()));
+    };
+    Surface_fitting_options so;
+    so.knots_u = so.knots_v = kv;
+    so.stretching_weight = o.stretching_weight;
+    so.bending_weight = o.bending_weight;
+    so.data_weight = o.data_weight;
+    so.parameterization = o.parameterization;
+    patch_surface.reserve(layout.patches.size());
+    for(std::size_t p = 0; p < layout.patches.size(); ++p) {
+      const auto& pa = layout.patches[p];
+      // Grid sides u0 (i = 0), u1 (i = N), v0 (j = 0), v1 (j = N), each along the increasing
+      // other index: arcs 3, 1, 0, 2 run from corners 0, 1, 0, 3.
+      so.fixed_boundaries[0] = oriented(pa.arcs[3], pa.corners[0]);
+      so.fixed_boundaries[1] = oriented(pa.arcs[1], pa.corners[1]);
+      so.fixed_boundaries[2] = oriented(pa.arcs[0], pa.corners[0]);
+      so.fixed_boundaries[3] = oriented(pa.arcs[2], pa.corners[3]);
+      patch_surface.push_back(fit_bspline_surface(samples.grids[p], so).spline);
+    }
+  }
+
+  std::vector<typename Layout::Cuboid> frame(layout.cuboids.size());
+  for(std::size_t c = 0; c < layout.cuboids.size(); ++c) {
+    typename Layout::Cuboid cu = layout.cuboids[c];
+    std::array<Point_grid, 6> grids;
+    for(int s = 1; s <= 6; ++s) grids[std::size_t(s - 1)] = internal::cuboid_side_grid(layout, samples, cu, s);
+    const double vol = internal::enclosed_volume(grids);
+    const bool mirror = vol < 0.;
+    if(mirror) {
+      cu = internal::mirror_u(cu);
+      for(int s = 1; s <= 6; ++s) grids[std::size_t(s - 1)] = internal::cuboid_side_grid(layout, samples, cu, s);
+    }
+    r.enclosed_volume.push_back(vol);
+    r.mirrored.push_back(mirror);
+    r.layout_side.push_back(mirror ? std::array<int, 6>{{2, 1, 3, 4, 5, 6}} : std::array<int, 6>{{1, 2, 3, 4, 5, 6}});
+    frame[c] = cu;
+    if(o.per_cuboid_fit) {
+      r.volume.add_patch(fit_bspline_volume(grids, vo).volume);
+      continue;
+    }
+    std::array<Tensor_bspline_surface, 6> faces;
+    for(int s = 1; s <= 6; ++s)
+      faces[std::size_t(s - 1)] =
+        internal::transformed_surface(patch_surface[cu.patches[std::size_t(s - 1)]], internal::side_symmetry(layout, cu, s));
+    r.volume.add_patch(build_bspline_volume(faces, o.construction).volume);
+  }
+
+  // Interfaces from the layout; every other side is a boundary.
+  auto volume_side = [&](std::size_t c, int layout_s) {
+    return r.mirrored[c] && layout_s <= 2 ? 3 - layout_s : layout_s;
+  };
+  std::vector<std::array<bool, 6>> glued(layout.cuboids.size(), std::array<bool, 6>{});
+  for(const auto& I : layout.interfaces()) {
+    const int sa = volume_side(I.cuboid_a, I.side_a), sb = volume_side(I.cuboid_b, I.side_b);
+    r.volume.add_interface(internal::interface_from_nodes(I.cuboid_a, sa, Layout::side_nodes(frame[I.cuboid_a], sa), I.cuboid_b,
+                                                          sb, Layout::side_nodes(frame[I.cuboid_b], sb)));
+    glued[I.cuboid_a][std::size_t(sa - 1)] = glued[I.cuboid_b][std::size_t(sb - 1)] = true;
+  }
+  for(std::size_t c = 0; c < layout.cuboids.size(); ++c)
+    for(int s = 1; s <= 6; ++s)
+      if(!glued[c][std::size_t(s - 1)]) r.volume.add_boundary({c, s});
+  const auto t1 = Clock::now();
+  r.fitting_seconds = std::chrono::duration<double>(t1 - t0).count();
+
+  if(o.evaluate_quality) {
+    r.quality = evaluate_quality(r.volume, o.quality_samples_per_span, o.bound);
+    Multipatch_volume on_surface; // the same patches, boundary = sides on SURFACE patches
+    for(const auto& v : r.volume.patches()) on_surface.add_patch(v);
+    for(const Patch_side& b : r.volume.boundaries()) {
+      const int ls = r.layout_side[b.patch][std::size_t(b.side - 1)];
+      if(layout.patches[layout.cuboids[b.patch].patches[std::size_t(ls - 1)]].kind == Layout::SURFACE) on_surface.add_boundary(b);
+    }
+    if(!on_surface.boundaries().empty())
+      r.distance = boundary_hausdorff_distance(on_surface, layout.mesh, o.distance_samples_per_direction);
+    r.quality_evaluated = true;
+    r.quality_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
+  }
+  r.samples = std::move(samples);
+  return r;
+}
+
+/// Samples the patches (sample_layout_patches()) and builds the volume from them.
+template <class Point_3>
+Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout, const Layout_volume_options& o)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  Patch_grids g = sample_layout_patches(layout, o.sampling);
+  const double ts = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  Layout_volume_result r = layout_volume(layout, std::move(g), o);
+  r.sampling_seconds = ts;
+  return r;
+}
+
+/*!
+ * Named-parameter form: `grid_resolution` (N, default 16), `smooth_interior_patches`
+ * (true), `spline_degree` (3), `number_of_spans` (max(1, N/4)), `stretching_weight` (0),
+ * `bending_weight` (1e-6) and `data_weight` (1) override the fields of `base`.
+ * Example: `layout_volume(layout, parameters::grid_resolution(32).spline_degree(2))`.
+ */
+template <class Point_3, class NamedParameters = parameters::Default_named_parameters>
+Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout,
+                                   const NamedParameters& np = parameters::default_values(),
+                                   Layout_volume_options base = Layout_volume_options())
+{
+  base.sampling.grid_segments = int(option(np, internal_np::grid_resolution, base.sampling.grid_segments));
+  base.sampling.smooth_interior_patches =
+    bool(option(np, internal_np::smooth_interior_patches, base.sampling.smooth_interior_patches));
+  base.degree = int(option(np, internal_np::spline_degree, base.degree));
+  base.spans = int(option(np, internal_np::number_of_spans, base.spans));
+  base.stretching_weight = option(np, internal_np::stretching_weight, base.stretching_weight);
+  base.bending_weight = option(np, internal_np::bending_weight, base.bending_weight);
+  base.data_weight = option(np, internal_np::data_weight, base.data_weight);
+  return layout_volume(layout, base);
+}
+
+} // namespace Polycube_IGA
+} // namespace CGAL
+
+#endif // CGAL_POLYCUBE_IGA_LAYOUT_VOLUME_H

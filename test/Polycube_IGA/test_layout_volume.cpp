@@ -1,0 +1,422 @@
+// Copyright (c) 2026 Polycube_IGA contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Patch_sampling.h and Layout_volume.h on box chains whose answer is known by construction:
+// arc-compatible grids, the box planes reproduced, valid conforming multipatch volumes close
+// to the mesh, any cuboid frame (rotated or left-handed), G+Smo round trip, determinism.
+
+#include "layout_fixtures.h"
+
+#include <CGAL/Polycube_IGA/IO/gismo_xml.h>
+#include <CGAL/Polycube_IGA/Layout_volume.h>
+#include <CGAL/Polycube_IGA/Patch_sampling.h>
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <tuple>
+
+using namespace test_support;
+namespace PI = CGAL::Polycube_IGA;
+
+namespace {
+
+const double pi = 3.14159265358979323846;
+
+/// Bent along a quarter circle of radius 3 (about the axis x = 0, y = 3) over the chain's
+/// length and twisted by 45 degrees about its axis: orientation-preserving.
+std::function<Point(double, double, double)> bend_and_twist(int k)
+{
+  return [k](double x, double y, double z) {
+    const double phi = 0.25 * pi * x / k; // twist about (y, z) = (0.5, 0.5)
+    const double yy = 0.5 + std::cos(phi) * (y - 0.5) - std::sin(phi) * (z - 0.5);
+    const double zz = 0.5 + std::sin(phi) * (y - 0.5) + std::cos(phi) * (z - 0.5);
+    const double R = 3., theta = 0.5 * pi * x / k;
+    return Point((R - yy) * std::sin(theta), R - (R - yy) * std::cos(theta), zz);
+  };
+}
+
+PI::Layout_volume_options small_options(int N)
+{
+  PI::Layout_volume_options o;
+  o.sampling.grid_segments = N;
+  o.distance_samples_per_direction = 16;
+  return o;
+}
+
+/// The interface with first <= second (patch, side), its maps inverted if it had to swap.
+PI::Patch_interface canonical(const PI::Patch_interface& f)
+{
+  if(!(f.second < f.first)) return f;
+  PI::Patch_interface g;
+  g.first = f.second;
+  g.second = f.first;
+  for(int i = 0; i < 3; ++i) {
+    const int j = f.direction_map[std::size_t(i)];
+    g.direction_map[std::size_t(j)] = i;
+    g.direction_orientation[std::size_t(j)] = f.direction_orientation[std::size_t(i)];
+  }
+  return g;
+}
+
+auto interface_key(const PI::Patch_interface& f)
+{
+  return std::make_tuple(f.first.patch, f.first.side, f.second.patch, f.second.side, f.direction_map, f.direction_orientation);
+}
+
+/// Declared interfaces equal the geometric ones of compute_topology(), boundaries too.
+void check_against_compute_topology(const PI::Multipatch_volume& mp)
+{
+  PI::Multipatch_volume geo = mp;
+  geo.compute_topology();
+  std::vector<decltype(interface_key(PI::Patch_interface()))> a, b;
+  for(const auto& f : mp.interfaces()) a.push_back(interface_key(canonical(f)));
+  for(const auto& f : geo.interfaces()) b.push_back(interface_key(canonical(f)));
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  CHECK(a == b);
+  std::vector<PI::Patch_side> ba = mp.boundaries(), bb = geo.boundaries();
+  std::sort(ba.begin(), ba.end());
+  std::sort(bb.begin(), bb.end());
+  CHECK(ba == bb);
+}
+
+/// The two sides of every interface have the same control points, bit for bit, under the
+/// interface's direction map. Returns the number of control points compared.
+std::size_t check_interface_nets_identical(const PI::Multipatch_volume& mp)
+{
+  std::size_t compared = 0, mismatches = 0;
+  for(const auto& f : mp.interfaces()) {
+    const auto& a = mp.patch(f.first.patch);
+    const auto& b = mp.patch(f.second.patch);
+    const auto na = a.control_net_size(), nb = b.control_net_size();
+    const int da = PI::side_direction(f.first.side), db = PI::side_direction(f.second.side);
+    std::array<int, 3> extent = na;
+    extent[std::size_t(da)] = 1;
+    PI::internal::for_each_multi_index<3>(extent, [&](const std::array<int, 3>& t) {
+      std::array<int, 3> ia = t, ib{};
+      ia[std::size_t(da)] = PI::side_parameter(f.first.side) ? na[std::size_t(da)] - 1 : 0;
+      for(int d = 0; d < 3; ++d) {
+        if(d == da) continue;
+        const int e = f.direction_map[std::size_t(d)];
+        ib[std::size_t(e)] = f.direction_orientation[std::size_t(d)] ? ia[std::size_t(d)] : nb[std::size_t(e)] - 1 - ia[std::size_t(d)];
+      }
+      ib[std::size_t(db)] = PI::side_parameter(f.second.side) ? nb[std::size_t(db)] - 1 : 0;
+      if(a.control_point(ia) != b.control_point(ib)) ++mismatches;
+      ++compared;
+    });
+  }
+  CHECK(mismatches == 0);
+  return compared;
+}
+
+/// Every arc's samples appear exactly (bit for bit) on the matching side of every patch using it.
+void check_arc_compatibility(const Layout& L, const PI::Patch_grids& g)
+{
+  std::vector<int> uses(L.arcs.size(), 0);
+  std::size_t mismatches = 0;
+  for(std::size_t p = 0; p < L.patches.size(); ++p)
+    for(int i = 0; i < 4; ++i) {
+      const std::size_t a = L.patches[p].arcs[std::size_t(i)];
+      std::vector<Eigen::Vector3d> side = g.side(p, i);
+      if(L.arcs[a].nodes[0] != L.patches[p].corners[std::size_t(i)]) std::reverse(side.begin(), side.end());
+      if(side != g.arc_samples[a]) ++mismatches;
+      ++uses[a];
+    }
+  CHECK(mismatches == 0);
+  // Every arc borders at least two patches (surface, cap or interface): the test compared something.
+  CHECK(*std::min_element(uses.begin(), uses.end()) >= 2);
+}
+
+void check_no_flips(const PI::Patch_grids& g)
+{
+  for(std::size_t p = 0; p < g.grids.size(); ++p) {
+    INFO("patch " << p);
+    CHECK(g.flipped_triangles[p] == 0);
+    CHECK(g.unlocated_points[p] == 0);
+  }
+}
+
+/// Relabels cuboid c's local frame: new coordinate d is old coordinate perm[d], reversed if flip[d].
+void relabel(Layout& L, std::size_t c, const std::array<int, 3>& perm, const std::array<bool, 3>& flip)
+{
+  const Layout::Cuboid old = L.cuboids[c];
+  Layout::Cuboid& cu = L.cuboids[c];
+  for(int n = 0; n < 8; ++n) {
+    const int x[3] = {n & 1, (n >> 1) & 1, (n >> 2) & 1};
+    int y[3];
+    for(int d = 0; d < 3; ++d) y[perm[std::size_t(d)]] = flip[std::size_t(d)] ? 1 - x[d] : x[d];
+    cu.nodes[std::size_t(n)] = old.nodes[std::size_t(y[0] + 2 * y[1] + 4 * y[2])];
+  }
+  for(int d = 0; d < 3; ++d)
+    for(int at = 0; at < 2; ++at)
+      cu.patches[std::size_t(2 * d + at)] = old.patches[std::size_t(2 * perm[std::size_t(d)] + (flip[std::size_t(d)] ? 1 - at : at))];
+}
+
+} // namespace
+
+TEST_CASE("patch grids of shared arcs agree bit for bit and no uv triangle flips", "[layout_volume]")
+{
+  struct Case
+  {
+    int k;
+    bool open, deformed;
+  };
+  for(const Case& c : {Case{1, false, false}, Case{3, false, false}, Case{2, true, false}, Case{2, true, true}, Case{3, false, true}}) {
+    INFO("k " << c.k << " open " << c.open << " deformed " << c.deformed);
+    const Layout L = box_chain_layout(c.k, 4, c.open, c.deformed ? bend_and_twist(c.k) : std::function<Point(double, double, double)>());
+    REQUIRE(L.validate().is_valid());
+    const PI::Patch_grids g = PI::sample_layout_patches(L, PI::parameters::grid_resolution(6));
+    REQUIRE(g.segments == 6);
+    REQUIRE(g.grids.size() == L.patches.size());
+    for(const auto& grid : g.grids) CHECK((grid.size_u == 7 && grid.size_v == 7));
+    check_arc_compatibility(L, g);
+    check_no_flips(g);
+    // Arc samples are equally spaced along the (straight, before deformation) arcs.
+    if(!c.deformed)
+      for(const auto& s : g.arc_samples)
+        for(std::size_t i = 1; i < s.size(); ++i)
+          CHECK(std::abs((s[i] - s[i - 1]).norm() - 1. / 6.) < 1e-12);
+  }
+}
+
+TEST_CASE("patch grids of an undeformed box lie on the box planes", "[layout_volume]")
+{
+  for(bool open : {false, true})
+    for(bool smooth : {true, false}) {
+      INFO("open " << open << " smooth " << smooth);
+      const Layout L = box_chain_layout(3, 3, open);
+      const PI::Patch_grids g =
+        PI::sample_layout_patches(L, PI::parameters::grid_resolution(5).smooth_interior_patches(smooth));
+      double worst = 0., outside = 0.;
+      for(std::size_t p = 0; p < L.patches.size(); ++p) {
+        // The coordinate all four corners share is the patch's plane.
+        std::array<Eigen::Vector3d, 4> c;
+        for(int i = 0; i < 4; ++i) c[std::size_t(i)] = PI::internal::to_eigen_point(L.mesh.point(L.nodes[L.patches[p].corners[std::size_t(i)]]));
+        int d = -1;
+        for(int e = 0; e < 3; ++e)
+          if(c[0][e] == c[1][e] && c[0][e] == c[2][e] && c[0][e] == c[3][e]) d = e;
+        REQUIRE(d >= 0);
+        Eigen::Vector3d lo = c[0], hi = c[0];
+        for(const auto& x : c) {
+          lo = lo.cwiseMin(x);
+          hi = hi.cwiseMax(x);
+        }
+        for(const auto& x : g.grids[p].points) {
+          worst = std::max(worst, std::abs(x[d] - c[0][d]));
+          outside = std::max(outside, ((lo - x).cwiseMax(x - hi)).maxCoeff());
+        }
+      }
+      CHECK(worst < 1e-12);
+      CHECK(outside < 1e-12);
+    }
+}
+
+TEST_CASE("interior patch grids of a flat square are the same with and without harmonic smoothing", "[layout_volume]")
+{
+  // On a flat square with uniform border samples the Coons grid is bilinear, hence discrete harmonic.
+  const Layout L = box_chain_layout(2, 2, true);
+  const PI::Patch_grids a = PI::sample_layout_patches(L, PI::parameters::grid_resolution(6).smooth_interior_patches(true));
+  const PI::Patch_grids b = PI::sample_layout_patches(L, PI::parameters::grid_resolution(6).smooth_interior_patches(false));
+  double diff = 0.;
+  for(std::size_t p = 0; p < L.patches.size(); ++p) {
+    if(L.patches[p].kind == Layout::SURFACE) {
+      CHECK(a.grids[p].points == b.grids[p].points);
+      continue;
+    }
+    for(std::size_t i = 0; i < a.grids[p].points.size(); ++i) diff = std::max(diff, (a.grids[p].points[i] - b.grids[p].points[i]).norm());
+  }
+  CHECK(diff < 1e-13);
+}
+
+TEST_CASE("layout volume of undeformed box chains is valid and conforming and fits the box", "[layout_volume]")
+{
+  struct Case
+  {
+    int k;
+    bool open;
+  };
+  for(const Case& c : {Case{1, false}, Case{3, false}, Case{2, true}}) {
+    INFO("k " << c.k << " open " << c.open);
+    const Layout L = box_chain_layout(c.k, 3, c.open);
+    const PI::Layout_volume_result r = PI::layout_volume(L, small_options(8));
+    const PI::Multipatch_volume& mp = r.volume;
+    CHECK(r.degree == 3);
+    CHECK(r.spans == 2);
+    CHECK(mp.number_of_patches() == std::size_t(c.k));
+    CHECK(mp.interfaces().size() == std::size_t(c.k - 1));
+    CHECK(mp.boundaries().size() == std::size_t(6 * c.k - 2 * (c.k - 1)));
+    check_against_compute_topology(mp);
+    check_no_flips(r.samples);
+    REQUIRE(r.quality_evaluated);
+    CHECK(r.quality.interfaces.conforming);
+    CHECK(r.quality.interfaces.max_gap < 1e-12);
+    check_interface_nets_identical(mp);
+    for(std::size_t p = 0; p < mp.number_of_patches(); ++p) {
+      INFO("patch " << p);
+      CHECK(!r.mirrored[p]);
+      CHECK(r.enclosed_volume[p] == Approx(1.).epsilon(1e-12));
+      CHECK(r.quality.certified[p].certified_positive);
+      CHECK(r.quality.certified[p].lower_bound > 0.);
+      CHECK(r.quality.sampled[p].min_scaled_jacobian > 0.);
+    }
+    // Caps span the boundary loops, the mesh has nothing there: only surface sides are measured.
+    CHECK(r.distance.boundary_sides == std::size_t(4 * c.k + (c.open ? 0 : 2)));
+    CHECK(r.distance.relative < 1e-3);
+  }
+}
+
+TEST_CASE("layout volume of a bent and twisted chain stays valid and close to the mesh", "[layout_volume]")
+{
+  for(bool open : {true, false}) {
+    const int k = open ? 2 : 3;
+    INFO("k " << k << " open " << open);
+    const Layout L = box_chain_layout(k, 4, open, bend_and_twist(k));
+    REQUIRE(L.validate().is_valid());
+    const PI::Layout_volume_result r = PI::layout_volume(L, small_options(8));
+    CHECK(r.volume.number_of_patches() == std::size_t(k));
+    CHECK(r.volume.interfaces().size() == std::size_t(k - 1));
+    check_against_compute_topology(r.volume);
+    check_no_flips(r.samples);
+    check_arc_compatibility(L, r.samples);
+    CHECK(r.quality.interfaces.conforming);
+    check_interface_nets_identical(r.volume);
+    for(std::size_t p = 0; p < r.volume.number_of_patches(); ++p) {
+      INFO("patch " << p);
+      CHECK(!r.mirrored[p]);
+      CHECK(r.quality.certified[p].lower_bound > 0.);
+    }
+    CHECK(r.distance.relative < 0.02);
+  }
+}
+
+TEST_CASE("layout volume orients rotated and left-handed cuboid frames", "[layout_volume]")
+{
+  const Layout base = box_chain_layout(2, 2, false, bend_and_twist(2));
+  const std::array<std::array<int, 3>, 6> perms{{{{0, 1, 2}}, {{1, 0, 2}}, {{0, 2, 1}}, {{2, 1, 0}}, {{1, 2, 0}}, {{2, 0, 1}}}};
+  const std::array<bool, 6> odd{{false, true, true, true, false, false}};
+  int mirrored = 0, cases = 0;
+  for(int t = 0; t < 48; t += 5) { // a spread of the 48 frames, both cuboids relabelled differently
+    Layout L = base;
+    const int t1 = (t * 7 + 3) % 48;
+    bool expect[2];
+    int idx = 0;
+    for(int tt : {t, t1}) {
+      const std::array<int, 3>& perm = perms[std::size_t(tt % 6)];
+      const std::array<bool, 3> flip{{(tt / 6 & 1) != 0, (tt / 12 & 1) != 0, (tt / 24 & 1) != 0}};
+      relabel(L, std::size_t(idx), perm, flip);
+      expect[idx] = odd[std::size_t(tt % 6)] != ((int(flip[0]) + int(flip[1]) + int(flip[2])) % 2 == 1);
+      ++idx;
+    }
+    INFO("frames " << t << " and " << t1);
+    REQUIRE(L.validate().is_valid());
+    PI::Layout_volume_options o = small_options(6);
+    o.distance_samples_per_direction = 8;
+    const PI::Layout_volume_result r = PI::layout_volume(L, o);
+    for(int c = 0; c < 2; ++c) {
+      CHECK(r.mirrored[std::size_t(c)] == expect[c]);
+      CHECK(r.quality.certified[std::size_t(c)].lower_bound > 0.);
+      mirrored += int(r.mirrored[std::size_t(c)]);
+    }
+    CHECK(r.volume.interfaces().size() == 1);
+    CHECK(r.quality.interfaces.conforming);
+    CHECK(r.quality.interfaces.max_gap < 1e-12);
+    CHECK(check_interface_nets_identical(r.volume) > 0);
+    check_against_compute_topology(r.volume);
+    ++cases;
+  }
+  CHECK(mirrored > 0);
+  CHECK(mirrored < 2 * cases);
+}
+
+TEST_CASE("per-cuboid fitting agrees with the shared fits to rounding", "[layout_volume]")
+{
+  Layout L = box_chain_layout(2, 3, true, bend_and_twist(2));
+  relabel(L, 1, {{1, 0, 2}}, {{false, false, true}}); // a different frame on each side of the interface
+  PI::Layout_volume_options o = small_options(8);
+  const PI::Layout_volume_result shared = PI::layout_volume(L, o);
+  o.per_cuboid_fit = true;
+  const PI::Layout_volume_result own = PI::layout_volume(L, o);
+  CHECK(own.quality.interfaces.conforming);
+  CHECK(shared.quality.interfaces.max_gap <= own.quality.interfaces.max_gap);
+  double diff = 0.;
+  for(std::size_t p = 0; p < 2; ++p)
+    for(std::size_t i = 0; i < shared.volume.patch(p).control_points().size(); ++i)
+      diff = std::max(diff, (shared.volume.patch(p).control_points()[i] - own.volume.patch(p).control_points()[i]).norm());
+  CHECK(diff < 1e-12);
+  for(std::size_t p = 0; p < 2; ++p) CHECK(own.quality.certified[p].lower_bound > 0.);
+}
+
+TEST_CASE("layout volume round-trips through G+Smo XML bit for bit", "[layout_volume]")
+{
+  const Layout L = box_chain_layout(2, 3, true, bend_and_twist(2));
+  PI::Layout_volume_options o = small_options(8);
+  o.evaluate_quality = false;
+  const PI::Layout_volume_result r = PI::layout_volume(L, o);
+  std::stringstream xml;
+  PI::IO::write_gismo_xml(xml, r.volume);
+  const PI::Multipatch_volume back = PI::IO::read_gismo_xml(xml);
+  REQUIRE(back.number_of_patches() == r.volume.number_of_patches());
+  for(std::size_t p = 0; p < back.number_of_patches(); ++p) {
+    CHECK(back.patch(p).control_points() == r.volume.patch(p).control_points());
+    for(int d = 0; d < 3; ++d) CHECK(back.patch(p).knot_vector(d) == r.volume.patch(p).knot_vector(d));
+  }
+  REQUIRE(back.interfaces().size() == r.volume.interfaces().size());
+  for(std::size_t i = 0; i < back.interfaces().size(); ++i)
+    CHECK(interface_key(back.interfaces()[i]) == interface_key(r.volume.interfaces()[i]));
+  CHECK(back.boundaries() == r.volume.boundaries());
+}
+
+TEST_CASE("layout volume is deterministic", "[layout_volume]")
+{
+  const Layout L = box_chain_layout(3, 3, false, bend_and_twist(3));
+  PI::Layout_volume_options o = small_options(8);
+  o.evaluate_quality = false;
+  const PI::Layout_volume_result a = PI::layout_volume(L, o), b = PI::layout_volume(L, o);
+  for(std::size_t p = 0; p < a.samples.grids.size(); ++p) CHECK(a.samples.grids[p].points == b.samples.grids[p].points);
+  REQUIRE(a.volume.number_of_patches() == b.volume.number_of_patches());
+  for(std::size_t p = 0; p < a.volume.number_of_patches(); ++p)
+    CHECK(a.volume.patch(p).control_points() == b.volume.patch(p).control_points());
+  std::stringstream xa, xb;
+  PI::IO::write_gismo_xml(xa, a.volume);
+  PI::IO::write_gismo_xml(xb, b.volume);
+  CHECK(xa.str() == xb.str());
+}
+
+TEST_CASE("layout volume named parameters match the options struct", "[layout_volume]")
+{
+  const Layout L = box_chain_layout(1, 3, true);
+  PI::Layout_volume_options o;
+  o.sampling.grid_segments = 6;
+  o.degree = 2;
+  o.spans = 3;
+  o.bending_weight = 1e-5;
+  o.evaluate_quality = false;
+  const PI::Layout_volume_result a = PI::layout_volume(L, o);
+  PI::Layout_volume_options base;
+  base.evaluate_quality = false;
+  const PI::Layout_volume_result b =
+    PI::layout_volume(L, PI::parameters::grid_resolution(6).spline_degree(2).number_of_spans(3).bending_weight(1e-5), base);
+  CHECK(b.degree == 2);
+  CHECK(b.spans == 3);
+  CHECK(b.samples.segments == 6);
+  CHECK(a.volume.patch(0).control_points() == b.volume.patch(0).control_points());
+  // Default spans: N / 4, at least 1.
+  o.spans = 0;
+  o.sampling.grid_segments = 3;
+  CHECK(PI::layout_volume(L, o).spans == 1);
+}
+
+TEST_CASE("patch sampling rejects bad resolutions and mismatched grids", "[layout_volume]")
+{
+  const Layout L = box_chain_layout(1, 2);
+  CHECK_THROWS_AS(PI::sample_layout_patches(L, PI::parameters::grid_resolution(0)), PI::Invalid_input_error);
+  PI::Patch_grids g = PI::sample_layout_patches(L, PI::parameters::grid_resolution(4));
+  g.grids.pop_back();
+  CHECK_THROWS_AS(PI::layout_volume(L, g), PI::Invalid_input_error);
+  Layout bad = L;
+  bad.patches[0].arcs[0] = bad.patches[0].arcs[2];
+  CHECK_THROWS_AS(PI::sample_layout_patches(bad), PI::Invalid_input_error);
+}
