@@ -1,0 +1,1018 @@
+// Copyright (c) 2026 Polycube_IGA contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Cuboid_decomposition: builds the Polycube_layout of a surface of any genus and boundary
+// count (reference §2.2.2, §1.2.3).
+//
+// Pants path (chi < 0): every pants patch of Pants_decomposition becomes 4 cuboids (3 arms
+// and a centre). As in §2.2.2, each boundary cycle gets 2 seed points and 4 corners at 1/8,
+// 3/8, 5/8, 7/8 of its arc length from a seed, and corners placed by one pants are imposed on
+// the pants across the cycle (corner transfer). Where the reference finds the seeds with a
+// circular conformal map and traces the polyedges in three cylindrical parameterizations,
+// this implementation cuts the pants into two hexagonal disks along three cutting curves
+// W (shortest paths joining the seeds of two boundaries, so W passes the "crotch" between
+// them like the gradient lines through the saddles of §2.2.2.1), maps each hexagon onto a
+// convex polygon with positive (mean-value) weights, and draws the arcs of its half of the
+// polycube there as straight segments, refining the mesh with exact predicates: one convex
+// domain per half keeps all arcs free of crossings by construction. The seed of a free
+// boundary is its point closest to the neighbour it connects to; the other seed is opposite
+// by arc length.
+//
+// chi >= 0 (left out by the reference): a sphere is split into two disks by the bisector of
+// two far points and becomes one cube (6 belt nodes, one cube corner inside each disk); a
+// disk becomes one cube whose top is the boundary loop; a cylinder, cut open along a
+// shortest path between its loops, becomes a chain of cuboids in a rectangle; a torus, cut
+// along its handle loop (meridian) and a closed seam crossing it once, becomes a ring of at
+// least 3 cuboids.
+
+#ifndef CGAL_POLYCUBE_IGA_CUBOID_DECOMPOSITION_H
+#define CGAL_POLYCUBE_IGA_CUBOID_DECOMPOSITION_H
+
+#include <CGAL/Polycube_IGA/Errors.h>
+#include <CGAL/Polycube_IGA/IO/read_triangle_mesh.h>
+#include <CGAL/Polycube_IGA/Pants_decomposition.h>
+#include <CGAL/Polycube_IGA/Polycube_layout.h>
+#include <CGAL/Polycube_IGA/Surface_topology.h>
+#include <CGAL/Polycube_IGA/parameters.h>
+#include <CGAL/Polycube_IGA/internal/layout_assembly.h>
+#include <CGAL/Polycube_IGA/internal/mesh_graph.h>
+#include <CGAL/Polycube_IGA/internal/mesh_pieces.h>
+#include <CGAL/Polycube_IGA/internal/piece_layout.h>
+#include <CGAL/Polycube_IGA/internal/shortest_path_tree.h>
+
+#include <CGAL/Surface_mesh.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Polycube_IGA {
+namespace internal {
+
+template <class P>
+using Piece_mesh = CGAL::Surface_mesh<P>;
+
+/// Border loops of a mesh, each as vertices in the order of the halfedges opposite to its
+/// border halfedges (faces on the left), starting at its smallest vertex; loops sorted by
+/// that vertex.
+template <class P>
+std::vector<std::vector<typename Piece_mesh<P>::Vertex_index>> all_border_loops(const Piece_mesh<P>& m)
+{
+  using V = typename Piece_mesh<P>::Vertex_index;
+  std::vector<std::vector<V>> loops;
+  std::vector<bool> seen(num_halfedges(m), false);
+  for(auto h0 : halfedges(m)) {
+    if(!is_border(h0, m) || seen[h0]) continue;
+    std::vector<V> loop;
+    auto h = h0;
+    do {
+      seen[h] = true;
+      loop.push_back(target(h, m)); // border halfedges run against the faces' orientation
+      h = prev(h, m);
+    } while(h != h0);
+    std::rotate(loop.begin(), std::min_element(loop.begin(), loop.end()), loop.end());
+    loops.push_back(loop);
+  }
+  std::sort(loops.begin(), loops.end(), [](const auto& a, const auto& b) { return a.front() < b.front(); });
+  return loops;
+}
+
+template <class P>
+double edge_length(const Piece_mesh<P>& m, typename Piece_mesh<P>::Vertex_index a, typename Piece_mesh<P>::Vertex_index b)
+{
+  return std::sqrt(CGAL::to_double(CGAL::squared_distance(m.point(a), m.point(b))));
+}
+
+/// Cumulative 3D arc length along a closed loop (size n+1, last = total).
+template <class P>
+std::vector<double> loop_arc_length(const Piece_mesh<P>& m, const std::vector<typename Piece_mesh<P>::Vertex_index>& loop)
+{
+  std::vector<double> s(loop.size() + 1, 0.);
+  for(std::size_t i = 0; i < loop.size(); ++i) s[i + 1] = s[i] + edge_length(m, loop[i], loop[(i + 1) % loop.size()]);
+  return s;
+}
+
+/// Index of the loop vertex closest in arc length to `target` (taken modulo the length),
+/// measured from index `from` forwards.
+inline std::size_t at_arc_length(const std::vector<double>& s, std::size_t from, double target)
+{
+  const std::size_t n = s.size() - 1;
+  const double total = s.back();
+  double t = std::fmod(s[from] + target, total);
+  if(t < 0) t += total;
+  std::size_t best = 0;
+  double bd = std::numeric_limits<double>::infinity();
+  for(std::size_t i = 0; i < n; ++i) {
+    double d = std::abs(s[i] - t);
+    d = std::min(d, total - d);
+    if(d < bd) {
+      bd = d;
+      best = i;
+    }
+  }
+  return best;
+}
+
+/// Shortest vertex path (3D length) from any root to `target`, entering no blocked vertex
+/// but the target; empty when unreachable.
+template <class P>
+std::vector<int> shortest_vertex_path(const Mesh_graph<Piece_mesh<P>>& g, const std::vector<int>& roots, int target,
+                                      std::vector<bool> blocked)
+{
+  std::vector<double> w(std::size_t(g.number_of_edges()));
+  for(int e = 0; e < g.number_of_edges(); ++e) w[std::size_t(e)] = g.length(e);
+  blocked[std::size_t(target)] = false;
+  const Shortest_path_tree t = shortest_path_tree(g, roots, w, blocked);
+  if(!std::isfinite(t.distance[std::size_t(target)])) return {};
+  std::vector<int> path{target};
+  while(t.parent_edge[std::size_t(path.back())] >= 0) path.push_back(g.other_vertex(t.parent_edge[std::size_t(path.back())], path.back()));
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+template <class P>
+std::vector<double> distances_from(const Mesh_graph<Piece_mesh<P>>& g, const std::vector<int>& roots)
+{
+  std::vector<double> w(std::size_t(g.number_of_edges()));
+  for(int e = 0; e < g.number_of_edges(); ++e) w[std::size_t(e)] = g.length(e);
+  return shortest_path_tree(g, roots, w).distance;
+}
+
+inline std::size_t read_parent(const std::vector<std::size_t>& map, std::size_t i) { return map[i]; }
+
+template <class P>
+std::vector<std::size_t> vertex_parents(const Piece_mesh<P>& m)
+{
+  auto pm = m.template property_map<typename Piece_mesh<P>::Vertex_index, std::size_t>("v:parent");
+  std::vector<std::size_t> out(num_vertices(m), no_parent);
+  if(!pm.second) return out;
+  for(auto v : vertices(m)) out[v] = pm.first[v];
+  return out;
+}
+
+[[noreturn]] inline void layout_failure(const std::string& what)
+{
+  throw Internal_error("cuboid_decomposition_failed", what);
+}
+
+/// Collects nodes and arcs in global (final mesh) terms while pieces are processed.
+struct Layout_builder
+{
+  std::vector<std::size_t> node_vertex;                  ///< final-mesh vertex of each node
+  std::vector<std::array<std::size_t, 2>> arc_nodes;
+  std::vector<std::vector<std::size_t>> arc_path;        ///< final-mesh vertices
+  std::vector<Interior_quad> interior;
+  std::vector<std::array<std::size_t, 8>> cuboids;
+  std::vector<int> cuboid_pants;
+  std::map<std::size_t, std::size_t> node_of_vertex;
+
+  std::size_t node(std::size_t v)
+  {
+    auto it = node_of_vertex.find(v);
+    if(it != node_of_vertex.end()) return it->second;
+    node_of_vertex.emplace(v, node_vertex.size());
+    node_vertex.push_back(v);
+    return node_vertex.size() - 1;
+  }
+  void arc(const std::vector<std::size_t>& path)
+  {
+    if(path.size() < 2) layout_failure("an arc has fewer than two vertices");
+    arc_nodes.push_back({{node(path.front()), node(path.back())}});
+    arc_path.push_back(path);
+  }
+  /// Splits a closed loop of final-mesh vertices into arcs at the vertices that are nodes.
+  void loop_arcs(const std::vector<std::size_t>& loop)
+  {
+    std::size_t first = loop.size();
+    for(std::size_t i = 0; i < loop.size(); ++i)
+      if(node_of_vertex.count(loop[i])) {
+        first = i;
+        break;
+      }
+    if(first == loop.size()) layout_failure("a loop carries no node");
+    std::vector<std::size_t> cur{loop[first]};
+    for(std::size_t k = 1; k <= loop.size(); ++k) {
+      const std::size_t v = loop[(first + k) % loop.size()];
+      cur.push_back(v);
+      if(node_of_vertex.count(v)) {
+        arc(cur);
+        cur.assign(1, v);
+      }
+    }
+  }
+};
+
+/// Writes the builder into the layout on `mesh` (whose vertices the builder's indices are).
+template <class P>
+Polycube_layout<P> finish_layout(Piece_mesh<P>&& mesh, Layout_builder& b, Layout_class cls, int genus, std::size_t boundary_loops,
+                                 std::size_t pants)
+{
+  using V = typename Piece_mesh<P>::Vertex_index;
+  Polycube_layout<P> L;
+  L.layout_class = cls;
+  L.genus = genus;
+  L.boundary_loops = boundary_loops;
+  L.number_of_pants = pants;
+  L.mesh = std::move(mesh);
+  for(std::size_t v : b.node_vertex) L.nodes.push_back(V(std::uint32_t(v)));
+  for(std::size_t a = 0; a < b.arc_path.size(); ++a) {
+    typename Polycube_layout<P>::Arc arc;
+    arc.nodes = b.arc_nodes[a];
+    for(std::size_t v : b.arc_path[a]) arc.vertices.push_back(V(std::uint32_t(v)));
+    L.arcs.push_back(std::move(arc));
+  }
+  assemble_layout(L, b.interior, b.cuboids, b.cuboid_pants);
+  return L;
+}
+
+/// Index of the square corner (a,b) in cyclic order (0,0), (1,0), (1,1), (0,1).
+inline int cyclic_corner(int a, int b) { return b == 0 ? a : 3 - a; }
+
+} // namespace internal
+
+/// \ingroup PkgPolycubeIGARef
+/// Builds the polycube layout of a surface mesh (see the file comment). Named parameters:
+/// `surface_topology` (reuse a topology result), `cut_criterion`, `symmetry_plane`,
+/// `criterion_strength` (passed to the pants stage), `maximum_refinements` (default 2:
+/// midpoint subdivisions of the whole mesh when a cut or arc finds no room).
+template <class TriangleMesh>
+class Cuboid_decomposition
+{
+public:
+  using Point = typename boost::property_traits<typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::const_type>::value_type;
+  using Mesh = CGAL::Surface_mesh<Point>;
+  using Layout = Polycube_layout<Point>;
+  using V = typename Mesh::Vertex_index;
+
+  template <class NamedParameters = parameters::Default_named_parameters>
+  Layout operator()(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values()) const
+  {
+    using CGAL::parameters::get_parameter;
+    if(num_faces(tm) == 0) throw Invalid_input_error("empty", "the mesh has no faces");
+    Surface_topology_result<TriangleMesh> topo = topology_of(tm, get_parameter(np, internal_np::surface_topology));
+    const int g = topo.genus;
+    const std::size_t b = topo.number_of_boundary_loops();
+    Layout L;
+    if(g == 0 && b == 0) L = sphere(copy_of(tm));
+    else if(g == 0 && b == 1) L = disk(copy_of(tm));
+    else if(g == 0 && b == 2) L = cylinder(copy_of(tm));
+    else if(g == 1 && b == 0) L = torus(tm, topo);
+    else {
+      const auto pants = Pants_decomposition<TriangleMesh>()(
+        tm, parameters::surface_topology(topo)
+              .cut_criterion(option(np, internal_np::cut_criterion, Cut_criterion::LENGTH))
+              .symmetry_plane(option(np, internal_np::symmetry_plane, Cut_criterion_options().symmetry_plane))
+              .criterion_strength(option(np, internal_np::criterion_strength, 1.0)));
+      L = pants_layout(tm, pants);
+    }
+    carry_input_indices(tm, L);
+    return L;
+  }
+
+private:
+  template <class Given>
+  static Surface_topology_result<TriangleMesh> topology_of(const TriangleMesh& tm, const Given& given)
+  {
+    if constexpr(std::is_same<Given, CGAL::internal_np::Param_not_found>::value)
+      return Surface_topology<TriangleMesh>()(tm, parameters::compute_tunnel_loops(false));
+    else
+      return given;
+  }
+
+  /// A Surface_mesh copy with compact indices (the pieces rely on index order).
+  static Mesh copy_of(const TriangleMesh& tm)
+  {
+    Mesh m;
+    std::map<typename boost::graph_traits<TriangleMesh>::vertex_descriptor, V> vmap;
+    for(auto v : vertices(tm)) vmap[v] = m.add_vertex(get(CGAL::vertex_point, tm, v));
+    for(auto f : faces(tm)) {
+      std::vector<V> vs;
+      for(auto v : vertices_around_face(halfedge(f, tm), tm)) vs.push_back(vmap[v]);
+      m.add_face(vs);
+    }
+    return m;
+  }
+
+  /// "v:input_index": input vertices keep theirs (or their own index), others get -1.
+  static void carry_input_indices(const TriangleMesh& tm, Layout& L)
+  {
+    auto given = tm.template property_map<typename boost::graph_traits<TriangleMesh>::vertex_descriptor, std::size_t>(
+      input_vertex_index_property());
+    auto out = L.mesh.template add_property_map<V, std::size_t>(input_vertex_index_property(), std::size_t(-1)).first;
+    const std::size_t n = num_vertices(tm);
+    for(auto v : vertices(L.mesh))
+      if(std::size_t(v) < n) out[v] = given.second ? given.first[typename boost::graph_traits<TriangleMesh>::vertex_descriptor(std::uint32_t(std::size_t(v)))] : std::size_t(v);
+  }
+
+  using Embedding = internal::Piece_graph_embedding<Point>;
+
+  /// Final-mesh vertex of vertex `v` of piece `k`.
+  static std::size_t final_vertex(const internal::Glued_mesh<Point>& gl, std::size_t k, V v)
+  {
+    return std::size_t(gl.piece_to_result[k][std::size_t(v)]);
+  }
+  static std::vector<std::size_t> final_path(const internal::Glued_mesh<Point>& gl, std::size_t k, const std::vector<V>& path)
+  {
+    std::vector<std::size_t> out;
+    for(V v : path) out.push_back(final_vertex(gl, k, v));
+    return out;
+  }
+
+  // ---------------------------------------------------------------- sphere -----------
+  static Layout sphere(Mesh m)
+  {
+    using namespace internal;
+    Mesh_graph<Mesh> g(m, get(CGAL::vertex_point, m));
+    // Two far points by a double sweep; the bisector of their distance fields splits the
+    // sphere into two connected vertex sets (every vertex reaches its source inside its set).
+    const std::vector<double> d0 = distances_from<Point>(g, {0});
+    const int p = int(std::max_element(d0.begin(), d0.end()) - d0.begin());
+    const std::vector<double> dp = distances_from<Point>(g, {p});
+    const int q = int(std::max_element(dp.begin(), dp.end()) - dp.begin());
+    const std::vector<double> dq = distances_from<Point>(g, {q});
+    std::vector<int> face_side(num_faces(m));
+    for(auto f : faces(m)) {
+      int s = 0;
+      for(auto v : vertices_around_face(halfedge(f, m), m)) s |= dp[v] < dq[v] ? 0 : 1;
+      face_side[f] = s;
+    }
+    std::vector<bool> cut(num_edges(m), false);
+    for(auto e : edges(m)) {
+      const auto h = halfedge(e, m);
+      cut[e] = face_side[face(h, m)] != face_side[face(opposite(h, m), m)];
+    }
+    std::vector<Mesh> pieces = cut_into_pieces(m, cut);
+    if(pieces.size() != 2) layout_failure("the sphere does not split into two disks");
+    std::vector<std::vector<V>> loops;
+    for(auto& piece : pieces) loops.push_back(border_loop(piece));
+    // The belt (piece 0's border, as vertices of m) carries the 6 cube nodes.
+    const std::vector<std::size_t> par0 = vertex_parents(pieces[0]);
+    const std::vector<double> s0 = loop_arc_length(pieces[0], loops[0]);
+    std::vector<std::size_t> belt_index;
+    for(int i = 0; i < 6; ++i) belt_index.push_back(at_arc_length(s0, 0, s0.back() * i / 6.));
+    for(int i = 0; i < 5; ++i)
+      if(belt_index[std::size_t(i)] >= belt_index[std::size_t(i + 1)]) layout_failure("the sphere's belt is too coarse for 6 nodes");
+    std::array<std::size_t, 6> belt;
+    for(int j = 0; j < 6; ++j) belt[std::size_t(j)] = par0[loops[0][belt_index[std::size_t(j)]]];
+    // Piece 0 holds cube corner (0,0,0), joined to belt nodes 0, 2, 4; piece 1 holds
+    // (1,1,1), joined to 1, 3, 5 (belt order: 100 110 010 011 001 101).
+    std::vector<Embedding> emb;
+    for(std::size_t k = 0; k < 2; ++k) {
+      const std::vector<std::size_t> par = vertex_parents(pieces[k]);
+      Piece_graph pg;
+      pg.anchors = circle_anchors(pieces[k], loops[k]);
+      for(std::size_t j = k; j < 6; j += 2)
+        for(std::size_t i = 0; i < loops[k].size(); ++i)
+          if(par[loops[k][i]] == belt[j]) pg.border_nodes.push_back(i);
+      if(pg.border_nodes.size() != 3) layout_failure("the sphere's belt is not a simple loop");
+      pg.interior_uv.push_back(Eigen::Vector2d(std::numeric_limits<double>::quiet_NaN(), 0.));
+      for(std::size_t j = 0; j < 3; ++j) pg.segments.push_back({{3, j}});
+      emb.push_back(embed_piece_graph(pieces[k], loops[k], pg));
+    }
+    Glued_mesh<Point> gl = glue_pieces(m, pieces);
+    Layout_builder bld;
+    const std::size_t c0 = bld.node(final_vertex(gl, 0, emb[0].vertex[3]));
+    const std::size_t c1 = bld.node(final_vertex(gl, 1, emb[1].vertex[3]));
+    std::array<std::size_t, 6> bn;
+    for(int j = 0; j < 6; ++j) bn[std::size_t(j)] = bld.node(belt[std::size_t(j)]);
+    for(std::size_t k = 0; k < 2; ++k)
+      for(const auto& path : emb[k].path) bld.arc(final_path(gl, k, path));
+    std::vector<std::size_t> belt_loop;
+    for(V v : loops[0]) belt_loop.push_back(par0[v]);
+    bld.loop_arcs(belt_loop);
+    const int code_of_belt[6] = {4, 6, 2, 3, 1, 5}; // x*4 + y*2 + z
+    std::array<std::size_t, 8> cube{};
+    for(int c = 0; c < 8; ++c) {
+      const int x = c & 1, y = (c >> 1) & 1, z = (c >> 2) & 1, code = x * 4 + y * 2 + z;
+      if(code == 0) cube[std::size_t(c)] = c0;
+      else if(code == 7) cube[std::size_t(c)] = c1;
+      else
+        for(int j = 0; j < 6; ++j)
+          if(code_of_belt[j] == code) cube[std::size_t(c)] = bn[std::size_t(j)];
+    }
+    bld.cuboids.push_back(cube);
+    return finish_layout(std::move(gl.mesh), bld, Layout_class::sphere, 0, 0, 0);
+  }
+
+  // ---------------------------------------------------------------- disk -------------
+  static Layout disk(Mesh m)
+  {
+    using namespace internal;
+    std::vector<Mesh> pieces = cut_into_pieces(m, std::vector<bool>(num_edges(m), false));
+    Mesh& piece = pieces[0];
+    const std::vector<V> loop = border_loop(piece);
+    const std::vector<double> s = loop_arc_length(piece, loop);
+    Piece_graph pg;
+    const Eigen::Vector2d square[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for(int i = 0; i < 4; ++i) {
+      const std::size_t at = at_arc_length(s, 0, s.back() * i / 4.);
+      if(i > 0 && at <= pg.border_nodes.back()) layout_failure("the boundary loop is too coarse for 4 corners");
+      pg.border_nodes.push_back(at);
+      pg.anchors.push_back({at, square[i]});
+    }
+    // The bottom of the cube: an inner square at a quarter of the way in.
+    for(int i = 0; i < 4; ++i) pg.interior_uv.push_back(Eigen::Vector2d(0.5, 0.5) + 0.5 * (square[i] - Eigen::Vector2d(0.5, 0.5)));
+    for(std::size_t i = 0; i < 4; ++i) {
+      pg.segments.push_back({{i, 4 + i}});
+      pg.segments.push_back({{4 + i, 4 + (i + 1) % 4}});
+    }
+    const std::vector<std::size_t> par = vertex_parents(piece);
+    const Embedding e = embed_piece_graph(piece, loop, pg);
+    Glued_mesh<Point> gl = glue_pieces(m, pieces);
+    Layout_builder bld;
+    std::array<std::size_t, 4> top{}, bottom{};
+    for(std::size_t i = 0; i < 4; ++i) {
+      top[i] = bld.node(par[loop[pg.border_nodes[i]]]);
+      bottom[i] = bld.node(final_vertex(gl, 0, e.vertex[4 + i]));
+    }
+    for(const auto& path : e.path) bld.arc(final_path(gl, 0, path));
+    std::vector<std::size_t> border;
+    for(V v : loop) border.push_back(par[v]);
+    bld.loop_arcs(border);
+    bld.interior.push_back({int(Layout::CAP), top});
+    std::array<std::size_t, 8> cube{};
+    for(int k = 0; k < 2; ++k)
+      for(int b = 0; b < 2; ++b)
+        for(int a = 0; a < 2; ++a)
+          cube[std::size_t(a + 2 * b + 4 * k)] = (k == 0 ? bottom : top)[std::size_t(cyclic_corner(a, b))];
+    bld.cuboids.push_back(cube);
+    return finish_layout(std::move(gl.mesh), bld, Layout_class::disk, 0, 1, 0);
+  }
+
+  // ------------------------------------------------------- cylinder and torus ----------
+  /// Lays a chain (or ring) of `k` cuboids in the disk `m` cut open along `cut`: the
+  /// disk's border runs seam (bottom), loop 2 (right), seam back (top), loop 1 (left); it is
+  /// mapped to a rectangle as long as the seam and as high as the loops, longitudinal arcs
+  /// are the lines at heights 1/4, 1/2, 3/4 (the seam itself is the fourth) and the sections
+  /// are vertical lines at j/k of the seam's length.
+  static Layout strip(Mesh m, const std::vector<bool>& cut, const std::vector<std::size_t>& seam,
+                      const std::vector<std::size_t>& loop1, const std::vector<std::size_t>& loop2, bool ring, int genus,
+                      std::size_t boundary_loops)
+  {
+    using namespace internal;
+    std::vector<Mesh> pieces = cut_into_pieces(m, cut);
+    if(pieces.size() != 1) layout_failure("cutting along the seam does not leave one disk");
+    Mesh& piece = pieces[0];
+    const std::vector<std::size_t> par = vertex_parents(piece);
+    // Start the border at the copy of seam[0] followed by seam[1].
+    V start;
+    {
+      const std::vector<V> any = border_loop(piece);
+      for(std::size_t i = 0; i < any.size(); ++i)
+        if(par[any[i]] == seam[0] && par[any[(i + 1) % any.size()]] == seam[1]) {
+          start = any[i];
+          break;
+        }
+      if(start == V()) layout_failure("the seam is not on the border of the cut disk");
+    }
+    const std::vector<V> loop = border_loop(piece, start);
+    const std::size_t n = loop.size(), ms = seam.size() - 1;
+    for(std::size_t i = 0; i <= ms; ++i)
+      if(par[loop[i]] != seam[i]) layout_failure("the seam's bottom side is not where it should be");
+    std::size_t r = ms + 1;
+    while(r < n && par[loop[r]] != seam[ms]) ++r;
+    if(r + ms >= n + 1) layout_failure("the cut disk's border is not a rectangle");
+    const std::vector<double> s = loop_arc_length(piece, loop);
+    const double W = s[ms], H = 0.5 * ((s[r] - s[ms]) + (s.back() - s[r + ms]));
+    int k = std::max(ring ? 3 : 1, int(std::lround(W / (0.5 * H))));
+    k = std::min(k, 12);
+    Piece_graph pg;
+    pg.anchors = {{0, {0, 0}}, {ms, {W, 0}}, {r, {W, H}}, {r + ms, {0, H}}};
+    // Border nodes: left levels 1..3, right levels 1..3, seam bottom j, seam top j.
+    auto left_level = [&](int l) { return at_arc_length(s, 0, -(s.back() - s[r + ms]) * l / 4.); };
+    std::array<std::size_t, 3> left{}, right{};
+    for(int l = 1; l <= 3; ++l) {
+      left[std::size_t(l - 1)] = left_level(l);
+      if(ring) { // the same meridian vertices on both sides
+        right[std::size_t(l - 1)] = n;
+        for(std::size_t i = ms; i <= r; ++i)
+          if(par[loop[i]] == par[loop[left[std::size_t(l - 1)]]]) right[std::size_t(l - 1)] = i;
+        if(right[std::size_t(l - 1)] == n) layout_failure("the meridian's two sides disagree");
+      } else
+        right[std::size_t(l - 1)] = at_arc_length(s, ms, (s[r] - s[ms]) * l / 4.);
+    }
+    for(int l = 0; l < 3; ++l) pg.border_nodes.push_back(left[std::size_t(l)]);
+    for(int l = 0; l < 3; ++l) pg.border_nodes.push_back(right[std::size_t(l)]);
+    std::vector<std::size_t> seam_node(std::size_t(k + 1));
+    seam_node[0] = 0;
+    seam_node[std::size_t(k)] = ms;
+    for(int j = 1; j < k; ++j) {
+      std::size_t best = 1;
+      for(std::size_t i = 1; i < ms; ++i)
+        if(std::abs(s[i] - W * j / k) < std::abs(s[best] - W * j / k)) best = i;
+      seam_node[std::size_t(j)] = best;
+    }
+    for(int j = 1; j <= k; ++j)
+      if(seam_node[std::size_t(j)] <= seam_node[std::size_t(j - 1)]) layout_failure("the seam is too coarse for the sections");
+    for(int j = 1; j < k; ++j) pg.border_nodes.push_back(seam_node[std::size_t(j)]);
+    for(int j = 1; j < k; ++j) pg.border_nodes.push_back(r + ms - seam_node[std::size_t(j)]);
+    const std::size_t nb = pg.border_nodes.size();
+    auto bottom = [&](int j) { return 6 + std::size_t(j - 1); };
+    auto top = [&](int j) { return 6 + std::size_t(k - 1) + std::size_t(j - 1); };
+    auto inner = [&](int j, int l) { return nb + std::size_t(j - 1) * 3 + std::size_t(l - 1); };
+    for(int j = 1; j < k; ++j)
+      for(int l = 1; l <= 3; ++l) pg.interior_uv.push_back(Eigen::Vector2d(W * j / k, H * l / 4.));
+    for(int l = 1; l <= 3; ++l) {
+      std::size_t prev = std::size_t(l - 1);
+      for(int j = 1; j < k; ++j) {
+        pg.segments.push_back({{prev, inner(j, l)}});
+        prev = inner(j, l);
+      }
+      pg.segments.push_back({{prev, 3 + std::size_t(l - 1)}});
+    }
+    for(int j = 1; j < k; ++j) {
+      pg.segments.push_back({{bottom(j), inner(j, 1)}});
+      pg.segments.push_back({{inner(j, 1), inner(j, 2)}});
+      pg.segments.push_back({{inner(j, 2), inner(j, 3)}});
+      pg.segments.push_back({{inner(j, 3), top(j)}});
+    }
+    const Embedding e = embed_piece_graph(piece, loop, pg);
+    Glued_mesh<Point> gl = glue_pieces(m, pieces);
+    Layout_builder bld;
+    // Section j, level l (0 on the seam).
+    std::vector<std::array<std::size_t, 4>> section(std::size_t(k + 1));
+    section[0][0] = bld.node(seam[0]);
+    section[std::size_t(k)][0] = bld.node(seam[ms]);
+    for(int l = 1; l <= 3; ++l) {
+      section[0][std::size_t(l)] = bld.node(par[loop[left[std::size_t(l - 1)]]]);
+      section[std::size_t(k)][std::size_t(l)] = bld.node(par[loop[right[std::size_t(l - 1)]]]);
+    }
+    for(int j = 1; j < k; ++j) {
+      section[std::size_t(j)][0] = bld.node(seam[seam_node[std::size_t(j)]]);
+      for(int l = 1; l <= 3; ++l) section[std::size_t(j)][std::size_t(l)] = bld.node(final_vertex(gl, 0, e.vertex[inner(j, l)]));
+    }
+    for(const auto& path : e.path) bld.arc(final_path(gl, 0, path));
+    bld.loop_arcs(loop1);
+    if(!ring) bld.loop_arcs(loop2);
+    // The seam, split at its nodes (closed for a ring: its ends are the same vertex).
+    {
+      std::vector<std::size_t> cur{seam[0]};
+      for(std::size_t i = 1; i <= ms; ++i) {
+        cur.push_back(seam[i]);
+        if(bld.node_of_vertex.count(seam[i])) {
+          bld.arc(cur);
+          cur.assign(1, seam[i]);
+        }
+      }
+    }
+    const int sections = ring ? k : k + 1;
+    for(int j = 0; j < sections; ++j) {
+      const bool cap = !ring && (j == 0 || j == k);
+      bld.interior.push_back({int(cap ? Layout::CAP : Layout::INTERFACE), section[std::size_t(j)]});
+    }
+    for(int c = 0; c < k; ++c) {
+      std::array<std::size_t, 8> cube{};
+      for(int i = 0; i < 2; ++i)
+        for(int b = 0; b < 2; ++b)
+          for(int a = 0; a < 2; ++a)
+            cube[std::size_t(i + 2 * a + 4 * b)] = section[std::size_t(c + i)][std::size_t(cyclic_corner(a, b))];
+      bld.cuboids.push_back(cube);
+    }
+    return finish_layout(std::move(gl.mesh), bld, ring ? Layout_class::torus : Layout_class::cylinder, genus, boundary_loops, 0);
+  }
+
+  static std::vector<std::size_t> as_indices(const std::vector<V>& vs)
+  {
+    std::vector<std::size_t> out;
+    for(V v : vs) out.push_back(std::size_t(v));
+    return out;
+  }
+
+  static Layout cylinder(Mesh m)
+  {
+    using namespace internal;
+    const auto loops = all_border_loops<Point>(m);
+    Mesh_graph<Mesh> g(m, get(CGAL::vertex_point, m));
+    std::vector<int> roots;
+    for(V v : loops[0]) roots.push_back(int(v));
+    const std::vector<double> d = distances_from<Point>(g, roots);
+    V target = loops[1][0];
+    for(V v : loops[1])
+      if(d[v] < d[target]) target = v;
+    std::vector<bool> blocked(num_vertices(m), false);
+    for(const auto& l : loops)
+      for(V v : l) blocked[v] = true;
+    for(int r : roots) blocked[std::size_t(r)] = false;
+    // Roots may be entered only as roots: the path leaves loop 1 at once.
+    const std::vector<int> path = shortest_vertex_path<Point>(g, roots, int(target), blocked);
+    if(path.size() < 2) layout_failure("no seam joins the cylinder's two loops");
+    std::vector<std::size_t> seam(path.begin(), path.end());
+    std::vector<bool> cut(num_edges(m), false);
+    for(std::size_t i = 0; i + 1 < seam.size(); ++i) cut[edge(halfedge(V(std::uint32_t(seam[i])), V(std::uint32_t(seam[i + 1])), m).first, m)] = true;
+    // Loops as vertex lists, each starting at the seam's end on it.
+    auto rotated = [&](const std::vector<V>& l, std::size_t v) {
+      std::vector<std::size_t> out = as_indices(l);
+      std::rotate(out.begin(), std::find(out.begin(), out.end(), v), out.end());
+      return out;
+    };
+    return strip(std::move(m), cut, seam, rotated(loops[0], seam.front()), rotated(loops[1], seam.back()), false, 0, 2);
+  }
+
+  static Layout torus(const TriangleMesh& tm, const Surface_topology_result<TriangleMesh>& topo)
+  {
+    using namespace internal;
+    if(topo.handle_loops.empty()) layout_failure("the torus has no handle loop");
+    Mesh m = copy_of(topo.loop_mesh(tm));
+    std::vector<std::size_t> meridian;
+    for(auto v : topo.handle_loops[0].vertices) meridian.push_back(std::size_t(v));
+    std::vector<bool> cut(num_edges(m), false);
+    auto mark = [&](std::size_t a, std::size_t b) {
+      const auto h = halfedge(V(std::uint32_t(a)), V(std::uint32_t(b)), m);
+      if(!h.second) layout_failure("a loop is not an edge path");
+      cut[edge(h.first, m)] = true;
+    };
+    for(std::size_t i = 0; i < meridian.size(); ++i) mark(meridian[i], meridian[(i + 1) % meridian.size()]);
+    std::vector<Mesh> annulus = cut_into_pieces(m, cut);
+    if(annulus.size() != 1) layout_failure("the meridian separates the torus");
+    const std::vector<std::size_t> par = vertex_parents(annulus[0]);
+    const auto sides = all_border_loops<Point>(annulus[0]);
+    if(sides.size() != 2) layout_failure("cutting the torus along its meridian does not give an annulus");
+    Mesh_graph<Mesh> g(annulus[0], get(CGAL::vertex_point, annulus[0]));
+    std::vector<bool> blocked(num_vertices(annulus[0]), false);
+    for(const auto& l : sides)
+      for(V v : l) blocked[v] = true;
+    // The seam: the shortest path between the two copies of a meridian vertex, over a few
+    // meridian vertices (deterministic choice: shortest, then first).
+    std::vector<int> best;
+    double best_length = std::numeric_limits<double>::infinity();
+    for(int t = 0; t < 4; ++t) {
+      const V a = sides[0][sides[0].size() * std::size_t(t) / 4];
+      V b;
+      for(V v : sides[1])
+        if(par[v] == par[a]) b = v;
+      if(b == V()) continue;
+      std::vector<bool> bl = blocked;
+      bl[a] = false;
+      const std::vector<int> path = shortest_vertex_path<Point>(g, {int(a)}, int(b), bl);
+      if(path.size() < 2) continue;
+      double len = 0;
+      for(std::size_t i = 0; i + 1 < path.size(); ++i) len += edge_length(annulus[0], V(std::uint32_t(path[i])), V(std::uint32_t(path[i + 1])));
+      if(len < best_length) {
+        best_length = len;
+        best = path;
+      }
+    }
+    if(best.empty()) layout_failure("no seam crosses the torus' meridian");
+    std::vector<std::size_t> seam;
+    for(int v : best) seam.push_back(par[std::size_t(v)]);
+    for(std::size_t i = 0; i + 1 < seam.size(); ++i) mark(seam[i], seam[i + 1]);
+    std::rotate(meridian.begin(), std::find(meridian.begin(), meridian.end(), seam.front()), meridian.end());
+    return strip(std::move(m), cut, seam, meridian, meridian, true, 1, 0);
+  }
+
+  // ---------------------------------------------------------------- pants ------------
+  static Layout pants_layout(const TriangleMesh& tm, const Pants_decomposition_result<TriangleMesh>& pd)
+  {
+    using namespace internal;
+    Mesh m = copy_of(pd.mesh(tm));
+    const std::size_t nc = pd.cycles.size();
+    std::vector<int> cycle_of(num_vertices(m), -1);
+    std::vector<bool> cut(num_edges(m), false);
+    for(std::size_t c = 0; c < nc; ++c) {
+      const auto& vs = pd.cycles[c].vertices;
+      for(std::size_t i = 0; i < vs.size(); ++i) {
+        cycle_of[std::size_t(vs[i])] = int(c);
+        if(pd.cycles[c].kind == Pants_cycle<TriangleMesh>::INPUT_BOUNDARY) continue;
+        const auto h = halfedge(V(std::uint32_t(std::size_t(vs[i]))), V(std::uint32_t(std::size_t(vs[(i + 1) % vs.size()]))), m);
+        if(!h.second) layout_failure("a cycle is not an edge path");
+        cut[edge(h.first, m)] = true;
+      }
+    }
+    std::vector<Mesh> pants = cut_into_pieces(m, cut);
+    if(pants.size() != pd.pants.size()) layout_failure("the cycles do not cut the surface into its pants");
+    // corners[c]: the 4 vertices of m on cycle c, in the cycle's order, once placed.
+    std::vector<std::vector<std::size_t>> corners(nc);
+    Layout_builder bld;
+    std::vector<std::vector<Mesh>> hexagons(pants.size());
+    std::vector<std::vector<Embedding>> embeddings(pants.size());
+    std::vector<std::array<int, 3>> loop_cycle(pants.size());
+    std::vector<int> stem(pants.size(), 0);
+    for(std::size_t k = 0; k < pants.size(); ++k) pants_piece(pants[k], cycle_of, corners, hexagons[k], embeddings[k], loop_cycle[k], stem[k]);
+    // Glue the refined halves into their pants, the pants into the surface.
+    std::vector<Glued_mesh<Point>> glued_pants;
+    std::vector<Mesh> refined_pants;
+    for(std::size_t k = 0; k < pants.size(); ++k) {
+      glued_pants.push_back(glue_pieces(pants[k], hexagons[k]));
+      refined_pants.push_back(glued_pants.back().mesh);
+    }
+    Glued_mesh<Point> gl = glue_pieces(m, refined_pants);
+    auto final_of = [&](std::size_t k, std::size_t h, V v) {
+      return std::size_t(gl.piece_to_result[k][std::size_t(glued_pants[k].piece_to_result[h][std::size_t(v)])]);
+    };
+    // Nodes: the corners of every cycle first (cycle order), then the centre nodes.
+    for(std::size_t c = 0; c < nc; ++c)
+      for(std::size_t v : corners[c]) bld.node(v);
+    for(std::size_t k = 0; k < pants.size(); ++k) {
+      const auto& E = embeddings[k];
+      // Graph layout per hexagon (see pants_piece): 0..5 corners, 6..9 crossings, 10..13
+      // centre nodes N_AS, N_SB, N_BT, N_AT; segments 0..5 corner links, 6..9 crossing
+      // links, 10..13 the centre face.
+      std::array<std::array<std::size_t, 4>, 2> N{};
+      for(std::size_t h = 0; h < 2; ++h)
+        for(std::size_t i = 0; i < 4; ++i) N[h][i] = bld.node(final_of(k, h, E[h].vertex[10 + i]));
+      for(std::size_t h = 0; h < 2; ++h) {
+        for(std::size_t sgm = 0; sgm < 6; ++sgm) {
+          std::vector<std::size_t> p;
+          for(V v : E[h].path[sgm]) p.push_back(final_of(k, h, v));
+          bld.arc(p);
+        }
+        for(std::size_t sgm = 10; sgm < 14; ++sgm) {
+          std::vector<std::size_t> p;
+          for(V v : E[h].path[sgm]) p.push_back(final_of(k, h, v));
+          bld.arc(p);
+        }
+      }
+      // Crossing links: the halves in both hexagons meeting at the same crossing vertex
+      // form one arc from a front centre node to a back one.
+      for(std::size_t i = 6; i < 10; ++i) {
+        std::vector<std::size_t> front;
+        for(V v : E[0].path[i]) front.push_back(final_of(k, 0, v));
+        bool joined = false;
+        for(std::size_t j = 6; j < 10 && !joined; ++j) {
+          std::vector<std::size_t> back;
+          for(V v : E[1].path[j]) back.push_back(final_of(k, 1, v));
+          if(back.front() != front.front()) continue;
+          std::vector<std::size_t> arc(front.rbegin(), front.rend());
+          arc.insert(arc.end(), back.begin() + 1, back.end());
+          bld.arc(arc);
+          joined = true;
+        }
+        if(!joined) layout_failure("the two halves of a pants disagree on a cutting curve");
+      }
+      // Centre cube (x from arm A of half 0 to arm B, y from half 0 to half 1, z from the
+      // stem up): half 0: N_AS (0,0,0), N_SB (1,0,0), N_BT (1,0,1), N_AT (0,0,1); half 1 has
+      // A and B swapped: N_AS (1,1,0), N_SB (0,1,0), N_BT (0,1,1), N_AT (1,1,1).
+      std::array<std::size_t, 8> centre{};
+      centre[0] = N[0][0]; centre[1] = N[0][1]; centre[5] = N[0][2]; centre[4] = N[0][3];
+      centre[3] = N[1][0]; centre[2] = N[1][1]; centre[6] = N[1][2]; centre[7] = N[1][3];
+      bld.cuboids.push_back(centre);
+      bld.cuboid_pants.push_back(int(k));
+      // Arms: each corner link joins a corner (graph 0..5) to a centre node; segment s
+      // joins corner s to the centre node listed here (see pants_piece).
+      const std::size_t link_node[6] = {3, 0, 0, 1, 1, 2};
+      // Which arm each corner link belongs to: 0 = A, 1 = S, 2 = B (of that half).
+      const int link_arm[6] = {0, 0, 1, 1, 2, 2};
+      // Arm of half 0's A = L (x = 0), B = R (x = 1); in half 1 they swap.
+      std::array<std::array<std::size_t, 8>, 3> arm{}; // L, R, S
+      std::array<int, 3> filled{{0, 0, 0}};
+      auto coords = [&](std::size_t node, int c[3]) {
+        for(int q = 0; q < 8; ++q)
+          if(centre[std::size_t(q)] == node) { c[0] = q & 1; c[1] = (q >> 1) & 1; c[2] = (q >> 2) & 1; return; }
+        layout_failure("an arm does not end at the centre cuboid");
+      };
+      for(std::size_t h = 0; h < 2; ++h)
+        for(std::size_t sgm = 0; sgm < 6; ++sgm) {
+          const std::size_t inner = N[h][link_node[sgm]];
+          const std::size_t outer = bld.node(final_of(k, h, E[h].vertex[sgm]));
+          int which = link_arm[sgm] == 1 ? 2 : ((link_arm[sgm] == 0) == (h == 0) ? 0 : 1);
+          int c[3];
+          coords(inner, c);
+          // Local axes of an arm: i from its cycle (0) to the centre (1); (a, b) the two
+          // other centre coordinates.
+          const int a = which == 2 ? c[0] : c[1], b = which == 2 ? c[1] : c[2];
+          arm[std::size_t(which)][std::size_t(1 + 2 * a + 4 * b)] = inner;
+          arm[std::size_t(which)][std::size_t(0 + 2 * a + 4 * b)] = outer;
+          ++filled[std::size_t(which)];
+        }
+      for(int w = 0; w < 3; ++w) {
+        if(filled[std::size_t(w)] != 4) layout_failure("an arm of a pants has " + std::to_string(filled[std::size_t(w)]) + " corners instead of 4");
+        bld.cuboids.push_back(arm[std::size_t(w)]);
+        bld.cuboid_pants.push_back(int(k));
+        // The arm's interface with the centre.
+        const auto& q = arm[std::size_t(w)];
+        bld.interior.push_back({int(Layout::INTERFACE), {{q[1], q[3], q[7], q[5]}}});
+      }
+    }
+    // Cycle arcs and the quads spanning the cycles.
+    for(std::size_t c = 0; c < nc; ++c) {
+      std::vector<std::size_t> loop;
+      for(auto v : pd.cycles[c].vertices) loop.push_back(std::size_t(v));
+      bld.loop_arcs(loop);
+      std::array<std::size_t, 4> q{};
+      for(std::size_t i = 0; i < 4; ++i) q[i] = bld.node(corners[c][i]);
+      const bool cap = pd.cycles[c].kind == Pants_cycle<TriangleMesh>::INPUT_BOUNDARY;
+      bld.interior.push_back({int(cap ? Layout::CAP : Layout::INTERFACE), q});
+    }
+    return finish_layout(std::move(gl.mesh), bld, Layout_class::pants, pd.genus, pd.boundary_loops, pd.pants.size());
+  }
+
+  /// Places seeds, corners and the cutting curves of one pants `P` (a piece of `m`), cuts it
+  /// into two halves and embeds the half-polycube graph in each.
+  static void pants_piece(Mesh& P, const std::vector<int>& cycle_of, std::vector<std::vector<std::size_t>>& corners,
+                          std::vector<Mesh>& halves, std::vector<Embedding>& emb, std::array<int, 3>& loop_cycle, int& stem)
+  {
+    using namespace internal;
+    const std::vector<std::size_t> par = vertex_parents(P);
+    const auto loops = all_border_loops<Point>(P);
+    if(loops.size() != 3) layout_failure("a pants patch does not have 3 boundaries");
+    Mesh_graph<Mesh> g(P, get(CGAL::vertex_point, P));
+    std::array<std::vector<double>, 3> dist, s;
+    for(int i = 0; i < 3; ++i) {
+      std::vector<int> roots;
+      for(V v : loops[std::size_t(i)]) roots.push_back(int(v));
+      dist[std::size_t(i)] = distances_from<Point>(g, roots);
+      s[std::size_t(i)] = loop_arc_length(P, loops[std::size_t(i)]);
+      loop_cycle[std::size_t(i)] = cycle_of[par[loops[std::size_t(i)][0]]];
+    }
+    // seed[i][j]: index on loop i of the seed joined to loop j; corner[i]: 4 loop indices.
+    std::array<std::array<std::size_t, 3>, 3> seed{};
+    std::array<std::array<std::size_t, 4>, 3> corner{};
+    for(int i = 0; i < 3; ++i) {
+      const auto& L = loops[std::size_t(i)];
+      const int j = (i + 1) % 3, k = (i + 2) % 3;
+      std::vector<std::size_t>& placed = corners[std::size_t(loop_cycle[std::size_t(i)])];
+      if(placed.empty()) {
+        // Free: the seed toward the nearer neighbour is its closest point, the other seed
+        // opposite by arc length, corners at 1/8, 3/8, 5/8, 7/8 (§2.2.2.2 c).
+        std::size_t bj = 0, bk = 0;
+        for(std::size_t x = 0; x < L.size(); ++x) {
+          if(dist[std::size_t(j)][L[x]] < dist[std::size_t(j)][L[bj]]) bj = x;
+          if(dist[std::size_t(k)][L[x]] < dist[std::size_t(k)][L[bk]]) bk = x;
+        }
+        const bool toward_j = dist[std::size_t(j)][L[bj]] <= dist[std::size_t(k)][L[bk]];
+        const std::size_t first = toward_j ? bj : bk;
+        const std::size_t second = at_arc_length(s[std::size_t(i)], first, 0.5 * s[std::size_t(i)].back());
+        seed[std::size_t(i)][std::size_t(j)] = toward_j ? first : second;
+        seed[std::size_t(i)][std::size_t(k)] = toward_j ? second : first;
+        for(int c = 0; c < 4; ++c) corner[std::size_t(i)][std::size_t(c)] = at_arc_length(s[std::size_t(i)], first, s[std::size_t(i)].back() * (0.125 + 0.25 * c));
+        std::sort(corner[std::size_t(i)].begin(), corner[std::size_t(i)].end());
+        // Record in the cycle's own order (the cycle is a loop of m vertices).
+        for(int c = 0; c < 4; ++c) placed.push_back(par[L[corner[std::size_t(i)][std::size_t(c)]]]);
+      } else {
+        // Imposed by a neighbour: seeds in two opposite gaps between the corners, the pair
+        // and assignment that bring the seeds nearest to the loops they join.
+        int found = 0;
+        for(std::size_t x = 0; x < L.size(); ++x)
+          if(std::find(placed.begin(), placed.end(), par[L[x]]) != placed.end()) corner[std::size_t(i)][std::size_t(found++ % 4)] = x;
+        if(found != 4) layout_failure("imposed corners are not on the pants' boundary");
+        std::array<std::size_t, 4> mid{};
+        for(int c = 0; c < 4; ++c) {
+          const std::size_t a = corner[std::size_t(i)][std::size_t(c)], b = corner[std::size_t(i)][std::size_t((c + 1) % 4)];
+          double gap = s[std::size_t(i)][b] - s[std::size_t(i)][a];
+          if(gap <= 0) gap += s[std::size_t(i)].back();
+          mid[std::size_t(c)] = at_arc_length(s[std::size_t(i)], a, 0.5 * gap);
+        }
+        double best = std::numeric_limits<double>::infinity();
+        for(int pair = 0; pair < 2; ++pair)
+          for(int swap = 0; swap < 2; ++swap) {
+            const std::size_t sj = mid[std::size_t(pair + 2 * swap)], sk = mid[std::size_t(pair + 2 * (1 - swap))];
+            const double cost = dist[std::size_t(j)][L[sj]] + dist[std::size_t(k)][L[sk]];
+            if(cost < best) {
+              best = cost;
+              seed[std::size_t(i)][std::size_t(j)] = sj;
+              seed[std::size_t(i)][std::size_t(k)] = sk;
+            }
+          }
+      }
+      for(int c = 0; c < 4; ++c)
+        for(int t : {j, k})
+          if(corner[std::size_t(i)][std::size_t(c)] == seed[std::size_t(i)][std::size_t(t)]) layout_failure("a boundary is too coarse for its seeds and corners");
+    }
+    // Cutting curves W_ij, shortest first, disjoint from each other and from the borders.
+    std::vector<bool> blocked(num_vertices(P), false);
+    for(const auto& L : loops)
+      for(V v : L) blocked[v] = true;
+    std::array<std::pair<int, int>, 3> pairs{{{0, 1}, {1, 2}, {2, 0}}};
+    std::sort(pairs.begin(), pairs.end(), [&](auto a, auto b) {
+      const double da = dist[std::size_t(a.second)][loops[std::size_t(a.first)][seed[std::size_t(a.first)][std::size_t(a.second)]]];
+      const double db = dist[std::size_t(b.second)][loops[std::size_t(b.first)][seed[std::size_t(b.first)][std::size_t(b.second)]]];
+      return da != db ? da < db : a < b;
+    });
+    std::array<std::array<std::vector<V>, 3>, 3> W; // W[i][j] from loop i to loop j
+    std::array<std::array<double, 3>, 3> W_length{};
+    std::vector<bool> cut(num_edges(P), false);
+    for(auto [i, j] : pairs) {
+      const V a = loops[std::size_t(i)][seed[std::size_t(i)][std::size_t(j)]], b = loops[std::size_t(j)][seed[std::size_t(j)][std::size_t(i)]];
+      std::vector<bool> bl = blocked;
+      bl[a] = false;
+      const std::vector<int> path = shortest_vertex_path<Point>(g, {int(a)}, int(b), bl);
+      if(path.size() < 2) layout_failure("no room for a cutting curve between two boundaries of a pants");
+      std::vector<V> w;
+      for(int v : path) w.push_back(V(std::uint32_t(v)));
+      for(std::size_t x = 0; x + 1 < w.size(); ++x) {
+        blocked[w[x]] = blocked[w[x + 1]] = true;
+        cut[edge(halfedge(w[x], w[x + 1], P).first, P)] = true;
+        W_length[std::size_t(i)][std::size_t(j)] += edge_length(P, w[x], w[x + 1]);
+      }
+      W_length[std::size_t(j)][std::size_t(i)] = W_length[std::size_t(i)][std::size_t(j)];
+      W[std::size_t(j)][std::size_t(i)] = std::vector<V>(w.rbegin(), w.rend());
+      W[std::size_t(i)][std::size_t(j)] = std::move(w);
+    }
+    // The stem is the boundary opposite the longest cutting curve (that curve crosses the
+    // centre cuboid's top, §2.2.2.4).
+    {
+      double longest = -1;
+      for(auto [i, j] : pairs)
+        if(W_length[std::size_t(i)][std::size_t(j)] > longest) {
+          longest = W_length[std::size_t(i)][std::size_t(j)];
+          stem = 3 - i - j;
+        }
+    }
+    // Crossing vertices on the W curves, as vertices of P: 1/2 of each stem curve, 1/3 and
+    // 2/3 of the long one.
+    auto point_on = [&](int i, int j, double f) {
+      const auto& w = W[std::size_t(i)][std::size_t(j)];
+      const double target = f * W_length[std::size_t(i)][std::size_t(j)];
+      double acc = 0;
+      std::size_t best = 1;
+      double bd = std::numeric_limits<double>::infinity();
+      for(std::size_t x = 1; x + 1 < w.size(); ++x) {
+        acc += edge_length(P, w[x - 1], w[x]);
+        if(std::abs(acc - target) < bd) {
+          bd = std::abs(acc - target);
+          best = x;
+        }
+      }
+      if(w.size() < 3) layout_failure("a cutting curve is too short for its crossings");
+      return w[best];
+    };
+    halves = cut_into_pieces(P, cut);
+    if(halves.size() != 2) layout_failure("the cutting curves do not split a pants into two halves");
+    for(std::size_t h = 0; h < 2; ++h) {
+      Mesh& H = halves[h];
+      const std::vector<std::size_t> hp = vertex_parents(H); // -> P
+      const std::vector<V> loop = border_loop(H);
+      const std::size_t n = loop.size();
+      // Which loop of P each border vertex of the half lies on (-1 on a W curve only).
+      auto loop_of = [&](std::size_t x) {
+        const V v = V(static_cast<std::uint32_t>(hp[loop[x]]));
+        for(int i = 0; i < 3; ++i)
+          if(std::find(loops[std::size_t(i)].begin(), loops[std::size_t(i)].end(), v) != loops[std::size_t(i)].end()) return i;
+        return -1;
+      };
+      // Runs of boundary vertices: find, going around, the boundary halves (maximal runs on
+      // one loop with at least one edge along it) in order.
+      std::vector<int> on(n);
+      for(std::size_t x = 0; x < n; ++x) on[x] = loop_of(x);
+      auto along_loop = [&](std::size_t x) { // edge x -> x+1 lies on a loop of P
+        const std::size_t y = (x + 1) % n;
+        if(on[x] < 0 || on[x] != on[y]) return false;
+        const auto& L = loops[std::size_t(on[x])];
+        const V a = V(static_cast<std::uint32_t>(hp[loop[x]])), b = V(static_cast<std::uint32_t>(hp[loop[y]]));
+        const auto pa = std::find(L.begin(), L.end(), a) - L.begin(), pb = std::find(L.begin(), L.end(), b) - L.begin();
+        const long d = std::labs(long(pa) - long(pb));
+        return d == 1 || d == long(L.size()) - 1;
+      };
+      // Order of boundaries met; the long curve joins the two non-stem boundaries: A is the
+      // one after it.
+      std::vector<int> order;
+      std::vector<std::size_t> run_start;
+      for(std::size_t x = 0; x < n; ++x)
+        if(along_loop(x) && !along_loop((x + n - 1) % n)) {
+          order.push_back(on[x]);
+          run_start.push_back(x);
+        }
+      if(order.size() != 3) layout_failure("a half of a pants is not a hexagon");
+      std::size_t a_run = 3;
+      for(std::size_t r = 0; r < 3; ++r)
+        if(order[r] != stem && order[(r + 2) % 3] != stem) a_run = r;
+      if(a_run == 3 || order[(a_run + 1) % 3] != stem) layout_failure("a half of a pants has its boundaries in an unexpected order");
+      const int A = order[a_run], B = order[(a_run + 2) % 3];
+      Piece_graph pg;
+      pg.anchors = circle_anchors(H, loop);
+      // Corners of each boundary half in loop order: A c1 c2, S c1 c2, B c1 c2 (0..5).
+      for(int r = 0; r < 3; ++r) {
+        const std::size_t run = (a_run + std::size_t(r)) % 3;
+        const int i = order[run];
+        int got = 0;
+        for(std::size_t x = run_start[run]; got < 2; x = (x + 1) % n) {
+          if(on[x] != i) layout_failure("a boundary half lost its corners");
+          const V v = V(static_cast<std::uint32_t>(hp[loop[x]]));
+          for(int c = 0; c < 4; ++c)
+            if(loops[std::size_t(i)][corner[std::size_t(i)][std::size_t(c)]] == v) {
+              pg.border_nodes.push_back(x);
+              ++got;
+            }
+          if(!along_loop(x) && got < 2) layout_failure("a boundary half does not carry two corners");
+        }
+      }
+      // Crossings 6..9: W(A,S) at 1/2, W(S,B) at 1/2, then on W(B,A) the one nearer B and
+      // the one nearer A.
+      const V crossing[4] = {point_on(A, stem, 0.5), point_on(stem, B, 0.5), point_on(B, A, 1. / 3.), point_on(B, A, 2. / 3.)};
+      for(const V c : crossing) {
+        std::size_t at = n;
+        for(std::size_t x = 0; x < n; ++x)
+          if(hp[loop[x]] == std::size_t(c)) at = x;
+        if(at == n) layout_failure("a crossing is not on the border of its half");
+        pg.border_nodes.push_back(at);
+      }
+      for(int c = 0; c < 4; ++c) pg.interior_uv.push_back(Eigen::Vector2d(std::numeric_limits<double>::quiet_NaN(), 0.));
+      // Centre nodes 10..13: N_AS, N_SB, N_BT, N_AT.
+      const std::array<std::array<std::size_t, 2>, 14> seg{{{{0, 13}}, {{1, 10}}, {{2, 10}}, {{3, 11}}, {{4, 11}}, {{5, 12}},
+                                                             {{6, 10}}, {{7, 11}}, {{8, 12}}, {{9, 13}},
+                                                             {{10, 11}}, {{11, 12}}, {{12, 13}}, {{13, 10}}}};
+      pg.segments.assign(seg.begin(), seg.end());
+      emb.push_back(embed_piece_graph(H, loop, pg));
+    }
+  }
+};
+
+} // namespace Polycube_IGA
+} // namespace CGAL
+
+#endif // CGAL_POLYCUBE_IGA_CUBOID_DECOMPOSITION_H
