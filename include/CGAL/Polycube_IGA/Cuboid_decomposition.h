@@ -36,6 +36,7 @@
 #include <CGAL/Polycube_IGA/parameters.h>
 #include <CGAL/Polycube_IGA/internal/layout_assembly.h>
 #include <CGAL/Polycube_IGA/internal/mesh_graph.h>
+#include <CGAL/Polycube_IGA/internal/mesh_refinement.h>
 #include <CGAL/Polycube_IGA/internal/mesh_pieces.h>
 #include <CGAL/Polycube_IGA/internal/piece_layout.h>
 #include <CGAL/Polycube_IGA/internal/shortest_path_tree.h>
@@ -47,6 +48,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -254,27 +256,47 @@ public:
   {
     using CGAL::parameters::get_parameter;
     if(num_faces(tm) == 0) throw Invalid_input_error("empty", "the mesh has no faces");
+    const int max_refinements = std::max(0, int(option(np, internal_np::maximum_refinements, 2)));
     Surface_topology_result<TriangleMesh> topo = topology_of(tm, get_parameter(np, internal_np::surface_topology));
-    const int g = topo.genus;
-    const std::size_t b = topo.number_of_boundary_loops();
-    Layout L;
-    if(g == 0 && b == 0) L = sphere(copy_of(tm));
-    else if(g == 0 && b == 1) L = disk(copy_of(tm));
-    else if(g == 0 && b == 2) L = cylinder(copy_of(tm));
-    else if(g == 1 && b == 0) L = torus(tm, topo);
-    else {
-      const auto pants = Pants_decomposition<TriangleMesh>()(
-        tm, parameters::surface_topology(topo)
-              .cut_criterion(option(np, internal_np::cut_criterion, Cut_criterion::LENGTH))
-              .symmetry_plane(option(np, internal_np::symmetry_plane, Cut_criterion_options().symmetry_plane))
-              .criterion_strength(option(np, internal_np::criterion_strength, 1.0)));
-      L = pants_layout(tm, pants);
+    // Where a boundary is too coarse for its corners or a half has no room for its arcs, the
+    // whole surface is subdivided at edge midpoints (the shape does not change, the input's
+    // vertices keep their indices) and the construction starts again.
+    std::shared_ptr<TriangleMesh> refined;
+    for(int attempt = 0;; ++attempt) {
+      const TriangleMesh& mesh = refined ? *refined : tm;
+      try {
+        Layout L = layout_of(mesh, topo, np);
+        carry_input_indices(tm, L);
+        return L;
+      } catch(const Internal_error& e) {
+        if(attempt >= max_refinements)
+          throw Internal_error(e.reason(), std::string(e.what()) + " (after " + std::to_string(attempt) + " refinement(s))");
+      }
+      auto next = std::make_shared<TriangleMesh>(mesh);
+      internal::subdivide_at_edge_midpoints(*next, get(CGAL::vertex_point, *next));
+      refined = next;
+      topo = Surface_topology<TriangleMesh>()(*refined, parameters::compute_tunnel_loops(false));
     }
-    carry_input_indices(tm, L);
-    return L;
   }
 
 private:
+  template <class NamedParameters>
+  static Layout layout_of(const TriangleMesh& tm, const Surface_topology_result<TriangleMesh>& topo, const NamedParameters& np)
+  {
+    const int g = topo.genus;
+    const std::size_t b = topo.number_of_boundary_loops();
+    if(g == 0 && b == 0) return sphere(copy_of(tm));
+    if(g == 0 && b == 1) return disk(copy_of(tm));
+    if(g == 0 && b == 2) return cylinder(copy_of(tm));
+    if(g == 1 && b == 0) return torus(tm, topo);
+    const auto pants = Pants_decomposition<TriangleMesh>()(
+      tm, parameters::surface_topology(topo)
+            .cut_criterion(option(np, internal_np::cut_criterion, Cut_criterion::LENGTH))
+            .symmetry_plane(option(np, internal_np::symmetry_plane, Cut_criterion_options().symmetry_plane))
+            .criterion_strength(option(np, internal_np::criterion_strength, 1.0)));
+    return pants_layout(tm, pants);
+  }
+
   template <class Given>
   static Surface_topology_result<TriangleMesh> topology_of(const TriangleMesh& tm, const Given& given)
   {

@@ -1,0 +1,168 @@
+// Copyright (c) 2026 Polycube_IGA contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// `polycube_iga build MESH -o OUT.xml [--vtu OUT.vtu] [--layout-vtu L.vtu]
+//                  [--layout-json L.json] [--report R.json] [--grid N] [--degree P]`:
+// the whole chain, mesh to multipatch B-spline volume (G+Smo XML). When some patch's
+// Jacobian is not certified positive the volume files are not written (exit 1,
+// reason nonpositive_jacobian) unless --allow-invalid; the report is always written.
+
+#include "arguments.h"
+#include "command_registry.h"
+#include "mesh_input.h"
+
+#include <CGAL/Polycube_IGA/IO/gismo_xml.h>
+#include <CGAL/Polycube_IGA/IO/layout_json.h>
+#include <CGAL/Polycube_IGA/IO/layout_vtk.h>
+#include <CGAL/Polycube_IGA/IO/vtu.h>
+#include <CGAL/Polycube_IGA/internal/atomic_file.h>
+#include <CGAL/Polycube_IGA/internal/json_writer.h>
+#include <CGAL/polycube_iga.h>
+
+#include <chrono>
+#include <iostream>
+#include <unistd.h>
+
+namespace polycube_iga_cli {
+namespace {
+
+namespace PI = CGAL::Polycube_IGA;
+
+int positive_option(const Parsed_arguments& a, const std::string& name, int fallback, int lo, int hi)
+{
+  if(!a.has(name)) return fallback;
+  const std::string text = a.get(name);
+  char* end = nullptr;
+  const long v = std::strtol(text.c_str(), &end, 10);
+  if(end == text.c_str() || *end != '\0' || v < lo || v > hi)
+    throw PI::Invalid_input_error("bad_arguments", name + " expects an integer in [" + std::to_string(lo) + ", " +
+                                                     std::to_string(hi) + "], got '" + text + "'");
+  return int(v);
+}
+
+template <class Model>
+void write_report(const std::string& path, const Input_mesh& in, const Model& model, double read_seconds, bool written)
+{
+  PI::internal::write_file_atomically(path, [&](std::ostream& os) {
+    const auto& L = model.layout;
+    const auto& V = model.volume;
+    PI::internal::Json_writer w(os);
+    w.begin_object()
+      .member("input_vertices", num_vertices(in.mesh))
+      .member("input_faces", num_faces(in.mesh))
+      .member("genus", L.genus)
+      .member("boundary_loops", L.boundary_loops)
+      .member("layout_class", PI::layout_class_name(L.layout_class))
+      .member("pants", L.number_of_pants)
+      .member("cuboids", L.cuboids.size())
+      .member("patches", V.volume.number_of_patches())
+      .member("layout_patches", L.patches.size())
+      .member("surface_patches", L.number_of_surface_patches())
+      .member("layout_nodes", L.nodes.size())
+      .member("layout_arcs", L.arcs.size())
+      .member("grid", V.samples.segments)
+      .member("degree", V.degree)
+      .member("spans", V.spans)
+      .member("valid", model.is_valid())
+      .member("volume_written", written);
+    w.key("patch_quality").begin_array();
+    for(std::size_t c = 0; c < V.quality.sampled.size(); ++c) {
+      const auto& s = V.quality.sampled[c];
+      const auto& b = V.quality.certified[c];
+      w.begin_object()
+        .member("patch", c)
+        .member("min_scaled_jacobian", s.min_scaled_jacobian)
+        .member("mean_scaled_jacobian", s.mean_scaled_jacobian)
+        .member("min_sampled_jacobian", s.min_determinant)
+        .member("certified_jacobian_lower_bound", b.lower_bound)
+        .member("certified_positive", b.certified_positive)
+        .end_object();
+    }
+    w.end_array();
+    w.key("hausdorff").begin_object()
+      .member("absolute", V.distance.hausdorff)
+      .member("relative_to_bbox_diagonal", V.distance.relative)
+      .member("spline_to_mesh", V.distance.spline_to_mesh)
+      .member("mesh_to_spline", V.distance.mesh_to_spline)
+      .member("bbox_diagonal", V.distance.mesh_bbox_diagonal)
+      .end_object();
+    w.key("interfaces").begin_object()
+      .member("count", V.volume.interfaces().size())
+      .member("max_gap", V.quality.interfaces.max_gap)
+      .end_object();
+    w.key("stage_seconds").begin_object().member("read_and_validate", read_seconds);
+    for(const auto& st : model.stage_seconds) w.member(st.first, st.second);
+    w.member("sampling", V.sampling_seconds).member("fitting", V.fitting_seconds).member("quality", V.quality_seconds);
+    w.end_object();
+    w.key("warnings").begin_array();
+    for(const auto& s : model.warnings) w.value(s);
+    w.end_array().end_object();
+    os << "\n";
+  });
+}
+
+int run_build(const Arguments& args)
+{
+  Parsed_arguments a(args, {"--merge-duplicates", "--drop-isolated", "--no-self-intersection-test", "--allow-invalid", "--quiet"},
+                     {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion"});
+  a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
+  const std::string out = a.get("-o");
+  if(out.empty()) throw PI::Invalid_input_error("bad_arguments", "build needs -o OUT.xml");
+  const int grid = positive_option(a, "--grid", 16, 2, 512);
+  const int degree = positive_option(a, "--degree", 3, 1, 7);
+  const PI::Cut_criterion criterion = PI::parse_cut_criterion(a.get("--criterion", "length"));
+  const bool verbose = !a.has("--quiet") && isatty(2);
+  auto progress = [&](const std::string& stage) {
+    if(verbose) std::cerr << "polycube_iga: " << stage << "...\n";
+  };
+
+  const auto t0 = std::chrono::steady_clock::now();
+  progress("reading " + a.positional()[0]);
+  Input_mesh in = read_input_mesh(a.positional()[0], a);
+  in.report.require_valid();
+  const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto model = PI::build_trivariate_model(
+    in.mesh, PI::parameters::grid_resolution(grid).spline_degree(degree).cut_criterion(criterion), progress);
+
+  const bool write_volume = model.is_valid() || a.has("--allow-invalid");
+  if(a.has("--layout-vtu")) PI::IO::write_layout_vtu(a.get("--layout-vtu"), model.layout);
+  if(a.has("--layout-json")) PI::IO::write_layout_json(a.get("--layout-json"), model.layout);
+  if(a.has("--report")) write_report(a.get("--report"), in, model, read_seconds, write_volume);
+  if(!write_volume) {
+    std::string worst;
+    for(const auto& w : model.warnings)
+      if(w.find("det J") != std::string::npos) { worst = w; break; }
+    throw PI::Internal_error("nonpositive_jacobian", "the volume is not certified valid (" + worst +
+                                                       "); nothing written (--allow-invalid writes it anyway)");
+  }
+  progress("writing " + out);
+  PI::IO::write_gismo_xml(out, model.volume.volume);
+  if(a.has("--vtu")) PI::IO::write_vtu(a.get("--vtu"), model.volume.volume);
+  if(!a.has("--quiet")) {
+    const auto& V = model.volume;
+    std::cout << out << ": " << V.volume.number_of_patches() << " patches (" << PI::layout_class_name(model.layout.layout_class)
+              << " layout, genus " << model.layout.genus << ", " << model.layout.boundary_loops << " boundary loops), degree "
+              << V.degree << ", certified det J >= " << V.quality.overall_certified.lower_bound
+              << ", min scaled Jacobian " << V.quality.overall_sampled.min_scaled_jacobian << ", Hausdorff "
+              << V.distance.relative * 100 << "% of the bbox diagonal\n";
+  }
+  return 0;
+}
+
+Register_command build_command("build", {
+  "the whole chain: mesh -> polycube layout -> multipatch B-spline volume (G+Smo XML)",
+  "usage: polycube_iga build MESH -o OUT.xml [--vtu OUT.vtu] [--layout-vtu L.vtu] [--layout-json L.json]\n"
+  "                          [--report R.json] [--grid N] [--degree P] [--criterion length|minima|symmetry]\n"
+  "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
+  "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
+  "  --layout-vtu L    the polycube layout on the surface: patches, arcs, nodes\n"
+  "  --layout-json L   the layout as JSON\n"
+  "  --report R.json   counts, per-patch scaled and certified Jacobians, Hausdorff distance,\n"
+  "                    seconds per stage, warnings (written even when the volume is not)\n"
+  "  --grid N          samples per patch side (default 16)   --degree P  spline degree (default 3)\n"
+  "  --allow-invalid   write the volume even if some det J is not certified positive\n"
+  "  exit 1 with nonpositive_jacobian when the volume is not certified valid (nothing written)\n",
+  run_build});
+
+} // namespace
+} // namespace polycube_iga_cli

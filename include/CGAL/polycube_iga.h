@@ -1,0 +1,96 @@
+// Copyright (c) 2026 Polycube_IGA contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// The one-call driver: triangle mesh -> topology -> (pants) -> cuboid decomposition ->
+// polycube layout -> patch grids -> B-spline faces and volumes -> multipatch volume, with the
+// quality figures of every stage. It only chains the stages (each is usable on its own);
+// named parameters are passed through to the stage that reads them.
+
+#ifndef CGAL_POLYCUBE_IGA_H
+#define CGAL_POLYCUBE_IGA_H
+
+#include <CGAL/Polycube_IGA/Cuboid_decomposition.h>
+#include <CGAL/Polycube_IGA/Errors.h>
+#include <CGAL/Polycube_IGA/Layout_volume.h>
+#include <CGAL/Polycube_IGA/Polycube_layout.h>
+#include <CGAL/Polycube_IGA/Surface_topology.h>
+#include <CGAL/Polycube_IGA/parameters.h>
+
+#include <chrono>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Polycube_IGA {
+
+/// \ingroup PkgPolycubeIGARef
+/// Everything `build_trivariate_model()` produced.
+template <class Point_3>
+struct Trivariate_model
+{
+  Polycube_layout<Point_3> layout;
+  Layout_validation layout_validation;
+  Layout_volume_result volume; ///< the multipatch volume, its samples and quality
+  /// Wall-clock seconds per stage, in the order they ran.
+  std::vector<std::pair<std::string, double>> stage_seconds;
+  std::vector<std::string> warnings;
+
+  /// True when every patch's det J is certified positive.
+  bool is_valid() const
+  {
+    if(!volume.quality_evaluated) return false;
+    for(const auto& b : volume.quality.certified)
+      if(!b.certified_positive) return false;
+    return !volume.quality.certified.empty();
+  }
+};
+
+/// \ingroup PkgPolycubeIGARef
+/// Runs the whole chain. `progress`, when set, is told the name of each stage as it starts.
+/// Named parameters: those of Surface_topology, Pants_decomposition, Cuboid_decomposition
+/// and layout_volume() (grid_resolution, spline_degree, number_of_spans, ...).
+/// Throws the stages' errors; an invalid layout becomes Internal_error("invalid_layout").
+template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
+auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values(),
+                            const std::function<void(const std::string&)>& progress = {})
+{
+  using Decomposition = Cuboid_decomposition<TriangleMesh>;
+  Trivariate_model<typename Decomposition::Point> model;
+  using clock = std::chrono::steady_clock;
+  auto stage = [&](const std::string& name, auto&& f) {
+    if(progress) progress(name);
+    const auto t0 = clock::now();
+    f();
+    model.stage_seconds.push_back({name, std::chrono::duration<double>(clock::now() - t0).count()});
+  };
+  Surface_topology_result<TriangleMesh> topology;
+  stage("topology", [&] { topology = Surface_topology<TriangleMesh>()(tm, parameters::compute_tunnel_loops(false)); });
+  for(const auto& w : topology.warnings) model.warnings.push_back(w);
+  stage("cuboid decomposition", [&] {
+    model.layout = Decomposition()(tm, parameters::surface_topology(topology)
+                                         .cut_criterion(option(np, internal_np::cut_criterion, Cut_criterion::LENGTH))
+                                         .symmetry_plane(option(np, internal_np::symmetry_plane, Cut_criterion_options().symmetry_plane))
+                                         .criterion_strength(option(np, internal_np::criterion_strength, 1.0)));
+  });
+  stage("layout validation", [&] { model.layout_validation = model.layout.validate(); });
+  if(!model.layout_validation.is_valid())
+    throw Internal_error("invalid_layout", "the polycube layout violates an invariant: " + model.layout_validation.problems.front());
+  stage("volume construction", [&] { model.volume = layout_volume(model.layout, np); });
+  for(std::size_t p = 0; p < model.volume.samples.flipped_triangles.size(); ++p)
+    if(model.volume.samples.flipped_triangles[p] > 0)
+      model.warnings.push_back("patch " + std::to_string(p) + ": " + std::to_string(model.volume.samples.flipped_triangles[p]) +
+                               " degenerate or flipped triangles in its map to the square");
+  if(model.volume.quality_evaluated)
+    for(std::size_t c = 0; c < model.volume.quality.certified.size(); ++c)
+      if(!model.volume.quality.certified[c].certified_positive)
+        model.warnings.push_back("volume patch " + std::to_string(c) + ": det J not certified positive (lower bound " +
+                                 std::to_string(model.volume.quality.certified[c].lower_bound) + ")");
+  return model;
+}
+
+} // namespace Polycube_IGA
+} // namespace CGAL
+
+#endif // CGAL_POLYCUBE_IGA_H
