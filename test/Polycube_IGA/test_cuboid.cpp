@@ -1,0 +1,129 @@
+// Copyright (c) 2026 Polycube_IGA contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Cuboid_decomposition on every class of surface: the layout validates (patches are disks
+// with 4 corners tiling the surface, cuboids consistent, Euler characteristics of surface
+// and solid right), the cuboid count is the class's, the surface is unchanged by the
+// refinement (area, and every input vertex kept), and the result is deterministic.
+
+#include "test_support.h"
+
+#include <CGAL/Polycube_IGA/Cuboid_decomposition.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+
+#include <catch2/catch.hpp>
+
+using namespace test_support;
+namespace PI = CGAL::Polycube_IGA;
+using Layout = PI::Polycube_layout<Point>;
+
+namespace {
+
+Layout decompose(const Mesh& m) { return PI::Cuboid_decomposition<Mesh>()(m); }
+
+void check_layout(const Mesh& m, const Layout& L)
+{
+  const PI::Layout_validation v = L.validate();
+  INFO((v.problems.empty() ? std::string("valid") : v.problems.front()));
+  REQUIRE(v.is_valid());
+  CHECK(v.euler_surface == 2 - 2 * L.genus - int(L.boundary_loops));
+  CHECK(v.euler_solid == 1 - L.genus);
+  // Refinement never moves the surface: same area, input vertices first and unchanged.
+  const double a0 = CGAL::to_double(CGAL::Polygon_mesh_processing::area(m));
+  const double a1 = CGAL::to_double(CGAL::Polygon_mesh_processing::area(L.mesh));
+  CHECK(std::abs(a1 - a0) <= 1e-9 * a0);
+  REQUIRE(num_vertices(L.mesh) >= num_vertices(m));
+  bool same = true;
+  for(auto v : vertices(m)) same = same && L.mesh.point(v) == m.point(v);
+  CHECK(same);
+  // Every surface patch has faces; cuboid sides are distinct patches.
+  for(const auto& c : L.cuboids) {
+    auto p = c.patches;
+    std::sort(p.begin(), p.end());
+    CHECK(std::adjacent_find(p.begin(), p.end()) == p.end());
+  }
+}
+
+} // namespace
+
+TEST_CASE("cuboid decomposition of a sphere is one cube", "[cuboid]")
+{
+  const Mesh m = load(data("sphere.off"));
+  const Layout L = decompose(m);
+  CHECK(L.layout_class == PI::Layout_class::sphere);
+  CHECK(L.cuboids.size() == 1);
+  CHECK(L.nodes.size() == 8);
+  CHECK(L.arcs.size() == 12);
+  CHECK(L.number_of_surface_patches() == 6);
+  check_layout(m, L);
+}
+
+TEST_CASE("cuboid decomposition of a disk is one capped cube", "[cuboid]")
+{
+  const Mesh m = load(data("mushroom.off"));
+  const Layout L = decompose(m);
+  CHECK(L.layout_class == PI::Layout_class::disk);
+  CHECK(L.cuboids.size() == 1);
+  CHECK(L.number_of_surface_patches() == 5);
+  check_layout(m, L);
+}
+
+TEST_CASE("cuboid decomposition of a cylinder is a chain of cuboids", "[cuboid]")
+{
+  const Mesh m = load(data("blade.off"));
+  const Layout L = decompose(m);
+  CHECK(L.layout_class == PI::Layout_class::cylinder);
+  REQUIRE(L.cuboids.size() >= 1);
+  CHECK(L.number_of_surface_patches() == 4 * L.cuboids.size());
+  CHECK(L.interfaces().size() == L.cuboids.size() - 1);
+  check_layout(m, L);
+}
+
+TEST_CASE("cuboid decomposition of a torus is a ring of at least 3 cuboids", "[cuboid]")
+{
+  for(const char* name : {"pipe.off", "torus.obj"}) {
+    INFO(name);
+    const Mesh m = load(data(name));
+    const Layout L = decompose(m);
+    CHECK(L.layout_class == PI::Layout_class::torus);
+    CHECK(L.cuboids.size() >= 3);
+    CHECK(L.interfaces().size() == L.cuboids.size());
+    check_layout(m, L);
+  }
+}
+
+TEST_CASE("cuboid decomposition of a pants patch gives 4 cuboids", "[cuboid]")
+{
+  const Mesh m = load(data("head.off"));
+  const Layout L = decompose(m);
+  CHECK(L.layout_class == PI::Layout_class::pants);
+  CHECK(L.cuboids.size() == 4);
+  CHECK(L.number_of_surface_patches() == 15);
+  check_layout(m, L);
+}
+
+TEST_CASE("cuboid decomposition of genus 2 and 3 gives 4 cuboids per pants", "[cuboid]")
+{
+  // anchor.off (genus 4) is not here yet: two of its pants cycles run one triangle apart and no
+  // cutting curve fits between them even after refinement (see the issue note).
+  for(const char* name : {"eight.off", "3holes.obj"}) {
+    INFO(name);
+    const Mesh m = load(data(name));
+    const Layout L = decompose(m);
+    const int g = L.genus;
+    CHECK(L.number_of_pants == std::size_t(2 * g - 2));
+    CHECK(L.cuboids.size() == std::size_t(4 * (2 * g - 2)));
+    check_layout(m, L);
+  }
+}
+
+TEST_CASE("cuboid decomposition is deterministic", "[cuboid]")
+{
+  const Mesh m = load(data("eight.off"));
+  const Layout a = decompose(m), b = decompose(m);
+  REQUIRE(num_vertices(a.mesh) == num_vertices(b.mesh));
+  bool same = a.nodes == b.nodes && a.arcs.size() == b.arcs.size();
+  for(auto v : vertices(a.mesh)) same = same && a.mesh.point(v) == b.mesh.point(v);
+  for(std::size_t i = 0; same && i < a.arcs.size(); ++i) same = a.arcs[i].vertices == b.arcs[i].vertices;
+  CHECK(same);
+}
