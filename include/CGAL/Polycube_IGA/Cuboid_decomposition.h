@@ -501,8 +501,10 @@ private:
     if(r + ms >= n + 1) layout_failure("the cut disk's border is not a rectangle");
     const std::vector<double> s = loop_arc_length(piece, loop);
     const double W = s[ms], H = 0.5 * ((s[r] - s[ms]) + (s.back() - s[r + ms]));
-    int k = std::max(ring ? 3 : 1, int(std::lround(W / (0.5 * H))));
-    k = std::min(k, 12);
+    // Cuboids close to cubes: a section's side is about H/4, so about 4W/H of them. Long
+    // bent cuboids fold (a torus ring of 3 has negative det J, of 6 it is certified valid).
+    int k = std::max(ring ? 3 : 1, int(std::lround(4. * W / H)));
+    k = std::min(k, 32);
     Piece_graph pg;
     pg.anchors = {{0, {0, 0}}, {ms, {W, 0}}, {r, {W, H}}, {r + ms, {0, H}}};
     // Border nodes: left levels 1..3, right levels 1..3, seam bottom j, seam top j.
