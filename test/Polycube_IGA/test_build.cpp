@@ -1,0 +1,121 @@
+// Copyright (c) 2026 Polycube_IGA contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// The whole chain, through build_trivariate_model() and `polycube_iga build`: the layout of
+// every class validates, the volume has one patch per cuboid with the layout's interfaces,
+// its boundary stays close to the input, the XML re-reads, and the contract on invalid
+// volumes holds (no volume file unless --allow-invalid, the report always says why).
+
+#include "test_support.h"
+
+#include <CGAL/Polycube_IGA/IO/gismo_xml.h>
+#include <CGAL/polycube_iga.h>
+
+#include <catch2/catch.hpp>
+
+#include <fstream>
+#include <sstream>
+
+using namespace test_support;
+namespace PI = CGAL::Polycube_IGA;
+
+namespace {
+bool exists(const std::string& path) { return std::ifstream(path).good(); }
+std::string slurp(const std::string& path)
+{
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+} // namespace
+
+TEST_CASE("build turns every surface class into a multipatch volume", "[build]")
+{
+  for(const char* name : {"sphere.off", "torus.obj", "head.off", "eight.off"}) {
+    INFO(name);
+    const Mesh m = load(data(name));
+    const auto model = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).number_of_spans(2));
+    REQUIRE(model.layout_validation.is_valid());
+    const auto& V = model.volume;
+    CHECK(V.volume.number_of_patches() == model.layout.cuboids.size());
+    CHECK(V.volume.interfaces().size() == model.layout.interfaces().size());
+    CHECK(V.quality.interfaces.conforming);
+    // Boundary fidelity: the default target is 2% of the bounding-box diagonal.
+    CHECK(V.distance.relative < 0.03);
+    CHECK(V.quality.overall_sampled.mean_scaled_jacobian > 0.3);
+    for(const auto& s : model.stage_seconds) CHECK(s.second >= 0.);
+  }
+}
+
+TEST_CASE("build CLI writes nothing invalid and always reports", "[build][cli]")
+{
+  const std::string xml = temp_path("eight.xml"), report = temp_path("eight_report.json"), layout = temp_path("eight_layout.vtu");
+  const Cli_result r = run_cli("build '" + data("eight.off") + "' -o '" + xml + "' --report '" + report + "' --layout-vtu '" +
+                               layout + "' --grid 8 --quiet");
+  const std::string rep = slurp(report);
+  REQUIRE(exists(report));
+  CHECK(rep.find("\"genus\":2") != std::string::npos);
+  CHECK(rep.find("\"cuboids\":8") != std::string::npos);
+  CHECK(exists(layout));
+  if(r.exit_code == 0) {
+    CHECK(rep.find("\"valid\":true") != std::string::npos);
+    CHECK(exists(xml));
+  } else {
+    // Not certified valid: exit 1 with the reason, no volume file, and the report says so.
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("nonpositive_jacobian") != std::string::npos);
+    CHECK(!exists(xml));
+    CHECK(rep.find("\"volume_written\":false") != std::string::npos);
+  }
+}
+
+TEST_CASE("build CLI output re-reads as the same multipatch volume", "[build][cli]")
+{
+  const std::string xml = temp_path("torus.xml"), vtu = temp_path("torus.vtu");
+  const Cli_result r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --vtu '" + vtu + "' --grid 8 --allow-invalid --quiet");
+  REQUIRE(r.exit_code == 0);
+  const PI::Multipatch_volume mp = PI::IO::read_gismo_xml(xml);
+  CHECK(mp.number_of_patches() >= 3);
+  CHECK(mp.interfaces().size() == mp.number_of_patches()); // a ring
+  CHECK(mp.boundaries().size() == 4 * mp.number_of_patches());
+  CHECK(exists(vtu));
+}
+
+TEST_CASE("build CLI rejects bad input and bad options without writing", "[build][cli]")
+{
+  const std::string xml = temp_path("bad.xml");
+  const std::string nan_mesh = write_text("nan.off", "OFF\n3 1 0\n0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n");
+  Cli_result r = run_cli("build '" + nan_mesh + "' -o '" + xml + "'");
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("non_finite_coordinates") != std::string::npos);
+  r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --grid 1");
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("bad_arguments") != std::string::npos);
+  r = run_cli("build '" + data("torus.obj") + "'");
+  CHECK(r.exit_code == 2);
+  CHECK(!exists(xml));
+}
+
+TEST_CASE("build gives a certified valid volume for a torus", "[build]")
+{
+  const Mesh m = load(data("torus.obj"));
+  const auto model = PI::build_trivariate_model(m);
+  CHECK(model.layout.layout_class == PI::Layout_class::torus);
+  CHECK(model.layout.cuboids.size() >= 3);
+  REQUIRE(model.is_valid());
+  for(const auto& b : model.volume.quality.certified) CHECK(b.lower_bound > 0.);
+  CHECK(model.volume.quality.overall_sampled.min_scaled_jacobian > 0.);
+  CHECK(model.volume.distance.relative < 0.02);
+  CHECK(model.warnings.empty());
+}
+
+TEST_CASE("build CLI writes a certified torus volume without --allow-invalid", "[build][cli]")
+{
+  const std::string xml = temp_path("valid_torus.xml"), report = temp_path("valid_torus.json");
+  const Cli_result r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --report '" + report + "' --quiet");
+  REQUIRE(r.exit_code == 0);
+  CHECK(slurp(report).find("\"valid\":true") != std::string::npos);
+  const PI::Multipatch_volume mp = PI::IO::read_gismo_xml(xml);
+  CHECK(mp.interfaces().size() == mp.number_of_patches());
+}
