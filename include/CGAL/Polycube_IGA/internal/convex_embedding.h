@@ -6,11 +6,15 @@
 // embedding with symmetrised mean-value weights w_ij + w_ji. Those weights are positive for
 // any triangle shape, so Floater's theorem makes the map one-to-one onto the convex polygon,
 // and the system is symmetric positive definite (one CHOLMOD factorisation, two solves).
+// The theorem has one more hypothesis when the polygon has straight sides carrying several
+// border vertices: no interior edge may join two vertices of the same side (a "dividing
+// edge" flattens everything between it and the side). Such edges are split first.
 
 #ifndef CGAL_POLYCUBE_IGA_INTERNAL_CONVEX_EMBEDDING_H
 #define CGAL_POLYCUBE_IGA_INTERNAL_CONVEX_EMBEDDING_H
 
 #include <CGAL/Polycube_IGA/Errors.h>
+#include <CGAL/Polycube_IGA/internal/mesh_pieces.h>
 #include <CGAL/Polycube_IGA/internal/sparse_cholesky.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -20,7 +24,9 @@
 #include <Eigen/Sparse>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace CGAL {
@@ -37,29 +43,72 @@ Eigen::Vector3d point3(const CGAL::Surface_mesh<P>& m, typename CGAL::Surface_me
 template <class P>
 using Uv_map = typename CGAL::Surface_mesh<P>::template Property_map<typename CGAL::Surface_mesh<P>::Vertex_index, Eigen::Vector2d>;
 
+/// "v:uv" of `m`, added (all (0,0)) when missing.
 template <class P>
 Uv_map<P> uv_map(CGAL::Surface_mesh<P>& m)
 {
   return m.template add_property_map<typename CGAL::Surface_mesh<P>::Vertex_index, Eigen::Vector2d>("v:uv", Eigen::Vector2d(0, 0)).first;
 }
 
-/// Border positions: loop[anchors[i].first] at anchors[i].second (sorted by loop index, a
-/// convex counter-clockwise polygon), the vertices between two anchors on the segment
-/// joining them in proportion to 3D arc length (wrapping around the loop's end).
+/// Exact orientation of the uv triangle (a, b, c).
+inline CGAL::Orientation uv_orientation(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c)
+{
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  return CGAL::orientation(K::Point_2(a.x(), a.y()), K::Point_2(b.x(), b.y()), K::Point_2(c.x(), c.y()));
+}
+
+/// Number of triangles of `m` whose "v:uv" orientation (exact) is not positive.
+template <class P>
+std::size_t count_nonpositive_uv_triangles(CGAL::Surface_mesh<P>& m)
+{
+  const Uv_map<P> uv = uv_map(m);
+  std::size_t bad = 0;
+  for(auto f : faces(m)) {
+    const auto h = halfedge(f, m);
+    if(uv_orientation(uv[source(h, m)], uv[target(h, m)], uv[target(next(h, m), m)]) != CGAL::LEFT_TURN) ++bad;
+  }
+  return bad;
+}
+
+/// Border positions: loop[anchors[i].first] at anchors[i].second (sorted by loop index, at
+/// least 3, a convex counter-clockwise polygon), the vertices between two anchors on the
+/// segment joining them in proportion to 3D arc length (wrapping around the loop's end).
+/// Throws Internal_error("parameterization_failed") for anchors that break these rules.
 template <class P>
 std::vector<Eigen::Vector2d> place_border(const CGAL::Surface_mesh<P>& piece,
                                           const std::vector<typename CGAL::Surface_mesh<P>::Vertex_index>& loop,
                                           const std::vector<std::pair<std::size_t, Eigen::Vector2d>>& anchors)
 {
   const std::size_t n = loop.size(), na = anchors.size();
-  if(na < 3 || n < 3) throw Internal_error("parameterization_failed", "a convex border needs at least 3 anchors");
+  if(na < 3 || n < 3) throw Internal_error("parameterization_failed", "a convex border needs at least 3 anchors on a loop of at least 3 vertices");
+  for(std::size_t a = 0; a < na; ++a) {
+    if(anchors[a].first >= n || (a > 0 && anchors[a].first <= anchors[a - 1].first))
+      throw Internal_error("parameterization_failed", "border anchors must be distinct loop indices in increasing order");
+    if(!anchors[a].second.allFinite()) throw Internal_error("parameterization_failed", "a border anchor is not finite");
+  }
+  // Convex and counter-clockwise: no right turn, and the turns add up to one full turn
+  // (which rules out a star polygon winding several times).
+  double turning = 0.;
+  for(std::size_t a = 0; a < na; ++a) {
+    const Eigen::Vector2d& p = anchors[(a + na - 1) % na].second;
+    const Eigen::Vector2d& q = anchors[a].second;
+    const Eigen::Vector2d& r = anchors[(a + 1) % na].second;
+    const Eigen::Vector2d d1 = q - p, d2 = r - q;
+    const double cross = d1.x() * d2.y() - d1.y() * d2.x();
+    // A right turn within rounding is tolerated: dense circle anchors have tiny turns.
+    if(p == q || cross < -1e-12 * d1.norm() * d2.norm())
+      throw Internal_error("parameterization_failed", "the border anchors do not form a convex counter-clockwise polygon");
+    turning += std::atan2(cross, d1.dot(d2));
+  }
+  if(std::abs(turning - 2 * M_PI) > 1e-6)
+    throw Internal_error("parameterization_failed", "the border anchors do not form a convex counter-clockwise polygon");
   std::vector<double> s(n + 1, 0.);
   for(std::size_t i = 0; i < n; ++i) s[i + 1] = s[i] + (point3(piece, loop[(i + 1) % n]) - point3(piece, loop[i])).norm();
   std::vector<Eigen::Vector2d> uv(n);
   for(std::size_t a = 0; a < na; ++a) {
     const std::size_t i0 = anchors[a].first, i1 = anchors[(a + 1) % na].first;
     const Eigen::Vector2d p0 = anchors[a].second, p1 = anchors[(a + 1) % na].second;
-    const std::size_t count = (i1 + n - i0) % n == 0 ? n : (i1 + n - i0) % n;
+    const std::size_t count = (i1 + n - i0) % n; // edges from anchor a to anchor a+1
     double total = 0.;
     for(std::size_t k = 0; k < count; ++k) {
       const std::size_t i = (i0 + k) % n;
@@ -69,15 +118,63 @@ std::vector<Eigen::Vector2d> place_border(const CGAL::Surface_mesh<P>& piece,
     for(std::size_t k = 0; k < count; ++k) {
       const std::size_t i = (i0 + k) % n;
       const double t = total > 0 ? acc / total : double(k) / double(count);
-      uv[i] = (1 - t) * p0 + t * p1;
+      uv[i] = k == 0 ? p0 : Eigen::Vector2d((1 - t) * p0 + t * p1);
       acc += s[i + 1] - s[i];
     }
   }
   return uv;
 }
 
-/// Tutte-type embedding with symmetrised mean-value weights; writes "v:uv" and returns the
-/// number of triangles whose uv orientation (exact predicate) is not positive.
+/// Splits every interior edge whose two ends are border vertices on the same straight side of
+/// the border polygon `loop_uv` (such an edge would flatten the region between it and the
+/// side onto the side). The new vertex is the 3D midpoint, an interior vertex with no parent;
+/// faces keep their "f:parent". Returns the number of edges split. Sides are maximal runs of
+/// loop vertices turning by less than 1e-9 (sine of the angle), so the rounding of
+/// place_border's interpolation does not create corners.
+template <class P>
+std::size_t split_dividing_edges(CGAL::Surface_mesh<P>& piece, const std::vector<typename CGAL::Surface_mesh<P>::Vertex_index>& loop,
+                                 const std::vector<Eigen::Vector2d>& loop_uv)
+{
+  using Mesh = CGAL::Surface_mesh<P>;
+  const std::size_t n = loop.size();
+  if(n < 3 || loop_uv.size() != n) return 0;
+  std::vector<std::size_t> corners;
+  for(std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d d1 = loop_uv[i] - loop_uv[(i + n - 1) % n], d2 = loop_uv[(i + 1) % n] - loop_uv[i];
+    const double cross = d1.x() * d2.y() - d1.y() * d2.x();
+    if(std::abs(cross) > 1e-9 * d1.norm() * d2.norm() || d1.dot(d2) <= 0) corners.push_back(i);
+  }
+  if(corners.empty()) return 0;
+  // side[i]: the side starting at the last corner at or before i; a corner also ends the
+  // side of its predecessor.
+  std::vector<bool> is_corner(n, false);
+  for(std::size_t c : corners) is_corner[c] = true;
+  std::vector<std::size_t> side(n), position(num_vertices(piece), no_parent);
+  for(std::size_t k = 0, c = 0; k < n; ++k) {
+    const std::size_t i = (corners[0] + k) % n;
+    if(k > 0 && is_corner[i]) ++c;
+    side[i] = c;
+  }
+  for(std::size_t i = 0; i < n; ++i) position[loop[i]] = i;
+  auto on_side = [&](std::size_t i, std::size_t c) { return side[i] == c || (is_corner[i] && side[(i + n - 1) % n] == c); };
+  std::vector<typename Mesh::Halfedge_index> dividing;
+  for(auto e : edges(piece)) {
+    const auto h = halfedge(e, piece);
+    if(is_border(e, piece)) continue;
+    const std::size_t i = position[source(h, piece)], j = position[target(h, piece)];
+    if(i == no_parent || j == no_parent) continue;
+    if(on_side(j, side[i]) || (is_corner[i] && on_side(j, side[(i + n - 1) % n]))) dividing.push_back(h);
+  }
+  for(auto h : dividing) split_edge_at(piece, h, 0.5);
+  return dividing.size();
+}
+
+/// Writes "v:uv" for every vertex: the loop vertices at loop_uv, the others by a Tutte-type
+/// embedding with symmetrised mean-value weights (positive, so the map is one-to-one onto a
+/// convex polygon; the system is SPD, solved with Sparse_cholesky). Interior edges joining
+/// two vertices of one straight side are split first (split_dividing_edges: the piece may
+/// gain interior vertices, appended, with v:parent no_parent). Returns the number of
+/// triangles whose uv orientation (exact) is not positive: 0 expected.
 template <class P>
 std::size_t embed_in_convex_polygon(CGAL::Surface_mesh<P>& piece,
                                     const std::vector<typename CGAL::Surface_mesh<P>::Vertex_index>& loop,
@@ -85,6 +182,8 @@ std::size_t embed_in_convex_polygon(CGAL::Surface_mesh<P>& piece,
 {
   using Mesh = CGAL::Surface_mesh<P>;
   using V = typename Mesh::Vertex_index;
+  if(loop.size() != loop_uv.size()) throw Internal_error("parameterization_failed", "the border positions do not match the border loop");
+  split_dividing_edges(piece, loop, loop_uv);
   auto uv = uv_map(piece);
   const std::size_t nv = num_vertices(piece);
   std::vector<int> unknown(nv, -1);
@@ -96,8 +195,14 @@ std::size_t embed_in_convex_polygon(CGAL::Surface_mesh<P>& piece,
   int n = 0;
   for(V v : vertices(piece))
     if(!fixed[v]) unknown[v] = n++;
-  // Mean-value weight of edge (i,j) at i: (tan(a/2) + tan(b/2)) / |x_j - x_i| over the two
-  // angles at i next to the edge; accumulated per face corner, symmetrised per edge.
+  // Mean-value weight of edge (i,j) at i: (tan(a/2) + tan(b/2)) / |x_j - x_i|, a and b the
+  // angles at i beside the edge; accumulated per face corner, so each edge sums both ends.
+  // tan(a/2) = |u x v| / (|u||v| + u.v), capped where the angle nears pi; edge lengths are
+  // floored so that degenerate triangles give large or zero terms, never inf or NaN.
+  double mean_length = 0.;
+  for(auto e : edges(piece)) mean_length += (point3(piece, source(halfedge(e, piece), piece)) - point3(piece, target(halfedge(e, piece), piece))).norm();
+  mean_length = num_edges(piece) > 0 ? mean_length / double(num_edges(piece)) : 1.;
+  const double min_length = 1e-12 * mean_length;
   std::vector<double> w(num_edges(piece), 0.);
   for(auto f : faces(piece)) {
     auto h = halfedge(f, piece);
@@ -105,19 +210,21 @@ std::size_t embed_in_convex_polygon(CGAL::Surface_mesh<P>& piece,
       const V i = source(h, piece), j = target(h, piece), l = target(next(h, piece), piece);
       const Eigen::Vector3d a = point3(piece, j) - point3(piece, i), b = point3(piece, l) - point3(piece, i);
       const double la = a.norm(), lb = b.norm();
-      if(la <= 0 || lb <= 0) continue;
-      const double angle = std::atan2(a.cross(b).norm(), a.dot(b));
-      const double t = std::tan(0.5 * std::min(angle, 3.14159));
-      w[std::size_t(edge(h, piece))] += t / la;
-      w[std::size_t(edge(prev(h, piece), piece))] += t / lb;
+      if(!(la > 0) || !(lb > 0)) continue; // no angle at a collapsed corner
+      const double denominator = la * lb + a.dot(b), sine = a.cross(b).norm();
+      const double t = std::min(denominator > 0 ? sine / denominator : 1e6, 1e6);
+      if(!std::isfinite(t)) continue;
+      w[std::size_t(edge(h, piece))] += t / std::max(la, min_length);
+      w[std::size_t(edge(prev(h, piece), piece))] += t / std::max(lb, min_length);
     }
   }
   double mean = 0.;
   for(double x : w) mean += x;
-  mean = w.empty() ? 1. : mean / double(w.size());
-  for(double& x : w) x = std::max(x, 1e-9 * mean + 1e-300); // degenerate corners: keep positive
+  mean = w.empty() || !(mean > 0) ? 1. : mean / double(w.size());
+  for(double& x : w) x = std::max(x, 1e-9 * mean); // every weight positive: Floater's theorem holds
   if(n > 0) {
     std::vector<Eigen::Triplet<double>> t;
+    t.reserve(std::size_t(n) * 7);
     Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
     for(auto e : edges(piece)) {
       const V a = source(halfedge(e, piece), piece), b = target(halfedge(e, piece), piece);
@@ -127,7 +234,7 @@ std::size_t embed_in_convex_polygon(CGAL::Surface_mesh<P>& piece,
         if(unknown[p] < 0) continue;
         t.emplace_back(unknown[p], unknown[p], x);
         if(unknown[q] >= 0) {
-          if(unknown[q] < unknown[p]) t.emplace_back(unknown[p], unknown[q], -x);
+          if(unknown[q] < unknown[p]) t.emplace_back(unknown[p], unknown[q], -x); // lower triangle only
         } else
           rhs.row(unknown[p]) += x * uv[q].transpose();
       }
@@ -140,14 +247,7 @@ std::size_t embed_in_convex_polygon(CGAL::Surface_mesh<P>& piece,
     for(V v : vertices(piece))
       if(unknown[v] >= 0) uv[v] = x.row(unknown[v]).transpose();
   }
-  std::size_t bad = 0;
-  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-  for(auto f : faces(piece)) {
-    std::vector<K::Point_2> q;
-    for(V v : vertices_around_face(halfedge(f, piece), piece)) q.emplace_back(uv[v].x(), uv[v].y());
-    if(CGAL::orientation(q[0], q[1], q[2]) != CGAL::LEFT_TURN) ++bad;
-  }
-  return bad;
+  return count_nonpositive_uv_triangles(piece);
 }
 
 } // namespace internal
