@@ -4,12 +4,19 @@
 // Exact insertion of points and straight segments of a piece's uv map into the mesh
 // (§2.2.2.3: polyedges are straight lines of a parametric domain). Which triangle contains a
 // point, which edge a segment leaves a triangle through and whether it passes exactly through
-// a vertex are decided by the kernel's exact Orientation_2 on the uv coordinates; crossed edges
-// are split at the crossing (3D and uv interpolated with the same parameter, so the surface
-// never moves) and the mesh stays triangulated. A crossing very close to an edge end joins
-// that vertex instead, to avoid slivers, unless the vertex belongs to an earlier path or is a
-// node ("v:locked"; border vertices count as locked): paths then only meet where the layout
-// graph says they do.
+// a vertex are decided by the kernel's exact Orientation_2 on the uv coordinates, always
+// against the segment's own line (its two end vertices never move), so rounding in the
+// vertices a walk creates never changes which triangles it crosses. Crossed edges are split
+// at the crossing (3D and uv interpolated with the same parameter, so the surface never
+// moves) and the mesh stays triangulated. A crossing very close to an edge end joins that
+// vertex instead, to avoid slivers; the vertex's uv moves onto the segment (its 3D point
+// stays) when its triangles stay positive. Vertices of earlier paths and nodes ("v:locked",
+// edges "e:locked"; border vertices count as locked) never snap or move: paths only meet
+// where the layout graph says they do.
+//
+// Reason codes: point_outside, point_on_border, point_on_path (insert_point);
+// segment_crossing (insert_segment would cross, run along or pass through an earlier path,
+// a locked vertex or the border). A failed call may leave the piece partly refined.
 
 #ifndef CGAL_POLYCUBE_IGA_INTERNAL_SEGMENT_INSERTION_H
 #define CGAL_POLYCUBE_IGA_INTERNAL_SEGMENT_INSERTION_H
@@ -18,10 +25,13 @@
 #include <CGAL/Polycube_IGA/internal/convex_embedding.h>
 #include <CGAL/Polycube_IGA/internal/mesh_pieces.h>
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -37,97 +47,129 @@ struct Segment_inserter
   using V = typename Mesh::Vertex_index;
   using H = typename Mesh::Halfedge_index;
   using F = typename Mesh::Face_index;
-  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using E = typename Mesh::Edge_index;
+  using Vec = Eigen::Vector2d;
 
   Mesh& m;
   Uv_map<P> uv;
   Vertex_parent_map<P> vpar;
   Face_parent_map<P> fpar;
   typename Mesh::template Property_map<V, bool> locked;
-  typename Mesh::template Property_map<typename Mesh::Edge_index, bool> locked_edge;
+  typename Mesh::template Property_map<E, bool> locked_edge;
 
   explicit Segment_inserter(Mesh& mesh)
     : m(mesh), uv(uv_map(mesh)), vpar(vertex_parent_map(mesh)), fpar(face_parent_map(mesh)),
       locked(mesh.template add_property_map<V, bool>("v:locked", false).first),
-      locked_edge(mesh.template add_property_map<typename Mesh::Edge_index, bool>("e:locked", false).first)
+      locked_edge(mesh.template add_property_map<E, bool>("e:locked", false).first)
   {}
 
-  K::Point_2 pt(V v) const { return K::Point_2(uv[v].x(), uv[v].y()); }
-  bool is_locked(V v) const { return locked[v] || is_border(v, m); }
+  bool is_locked(V v) const { return locked[v] || m.is_border(v); }
 
-  /// Splits the edge of `h` at parameter t (from source to target) and re-triangulates
-  /// both sides; returns the new vertex.
+  static double cross(const Vec& a, const Vec& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+  /// Whether every triangle around v stays positive with v at q.
+  bool star_positive_at(V v, const Vec& q) const
+  {
+    for(H h : halfedges_around_target(halfedge(v, m), m)) {
+      if(is_border(h, m)) continue;
+      // h: x -> v; the triangle is (v, a, x) counter-clockwise.
+      const V a = target(next(h, m), m), x = source(h, m);
+      if(uv_orientation(q, uv[a], uv[x]) != CGAL::LEFT_TURN) return false;
+    }
+    return true;
+  }
+
+  bool try_move(V v, const Vec& q)
+  {
+    if(uv[v] == q) return true;
+    if(!star_positive_at(v, q)) return false;
+    uv[v] = q;
+    return true;
+  }
+
+  /// Splits the edge of h at parameter t, 3D and uv alike; returns the new vertex.
   V split(H h, double t)
   {
-    const V a = source(h, m), b = target(h, m);
-    const H o = opposite(h, m);
-    const bool left = !is_border(h, m), right = !is_border(o, m);
-    const F fl = left ? face(h, m) : F(), fr = right ? face(o, m) : F();
-    const std::size_t pl = left ? fpar[fl] : no_parent, pr = right ? fpar[fr] : no_parent;
-    const Eigen::Vector3d x = (1 - t) * point3(m, a) + t * point3(m, b);
-    const Eigen::Vector2d u = (1 - t) * uv[a] + t * uv[b];
-    const H hn = CGAL::Euler::split_edge(h, m); // hn: a -> new, next(hn) == h
-    const V nv = target(hn, m);
-    m.point(nv) = P(x.x(), x.y(), x.z());
-    uv[nv] = u;
-    vpar[nv] = no_parent;
-    if(left) {
-      const H g = CGAL::Euler::split_face(hn, next(h, m), m);
-      fpar[face(g, m)] = pl;
-      fpar[face(opposite(g, m), m)] = pl;
-    }
-    if(right) {
-      const H on = opposite(hn, m); // new -> a
-      const H g = CGAL::Euler::split_face(opposite(h, m), next(on, m), m);
-      fpar[face(g, m)] = pr;
-      fpar[face(opposite(g, m), m)] = pr;
-    }
-    if(locked_edge[edge(h, m)]) {
-      locked_edge[edge(hn, m)] = true;
-      locked[nv] = true;
-    }
+    const Vec x = (1 - t) * uv[source(h, m)] + t * uv[target(h, m)];
+    const V nv = target(split_edge_at(m, h, t), m);
+    uv[nv] = x;
     return nv;
   }
 
-  V insert_point(const Eigen::Vector2d& p, double snap)
+  V insert_point(const Vec& p, double snap)
   {
-    const K::Point_2 q(p.x(), p.y());
+    if(!p.allFinite()) throw Internal_error("point_outside", "a layout node has no finite parametric position");
     for(F f : faces(m)) {
       const H h0 = halfedge(f, m);
-      const H hs[3] = {h0, next(h0, m), next(next(h0, m), m)};
-      CGAL::Orientation o[3];
-      bool inside = true;
+      const std::array<H, 3> hs{{h0, next(h0, m), next(next(h0, m), m)}};
+      std::array<CGAL::Orientation, 3> o;
+      bool inside = uv_orientation(uv[source(h0, m)], uv[target(h0, m)], uv[target(hs[1], m)]) == CGAL::LEFT_TURN;
       for(int k = 0; k < 3 && inside; ++k) {
-        o[k] = CGAL::orientation(pt(source(hs[k], m)), pt(target(hs[k], m)), q);
-        inside = o[k] != CGAL::RIGHT_TURN;
+        o[std::size_t(k)] = uv_orientation(uv[source(hs[std::size_t(k)], m)], uv[target(hs[std::size_t(k)], m)], p);
+        inside = o[std::size_t(k)] != CGAL::RIGHT_TURN;
       }
       if(!inside) continue;
+      for(const H h : hs)
+        if(uv[target(h, m)] == p) {
+          locked[target(h, m)] = true;
+          return target(h, m);
+        }
       double shortest = std::numeric_limits<double>::infinity();
       for(const H h : hs) shortest = std::min(shortest, (uv[target(h, m)] - uv[source(h, m)]).norm());
-      // Exactly on, or within the snap distance of, an unlocked vertex.
+      const double reach = snap * shortest;
+      // The nearest unlocked vertex within reach joins, moved onto p if its triangles allow.
+      V near;
+      double nd = std::numeric_limits<double>::infinity();
       for(const H h : hs) {
         const V v = target(h, m);
-        if(uv[v] == p || (!is_locked(v) && (uv[v] - p).norm() <= snap * shortest)) {
-          locked[v] = true;
-          return v;
+        const double d = (uv[v] - p).norm();
+        if(!is_locked(v) && d <= reach && d < nd) {
+          nd = d;
+          near = v;
         }
       }
-      // On (or near) an interior edge: split it at the projection.
-      for(int k = 0; k < 3; ++k) {
+      if(near != V()) {
+        try_move(near, p);
+        locked[near] = true;
+        return near;
+      }
+      // Exactly on an edge: split it there.
+      for(std::size_t k = 0; k < 3; ++k) {
+        if(o[k] != CGAL::COLLINEAR) continue;
         const H h = hs[k];
-        const Eigen::Vector2d a = uv[source(h, m)], b = uv[target(h, m)];
-        const double len2 = (b - a).squaredNorm();
-        const double t = std::clamp((p - a).dot(b - a) / len2, 0., 1.);
-        const double d = (a + t * (b - a) - p).norm();
-        if((o[k] == CGAL::COLLINEAR || d <= snap * shortest) && !is_border(edge(h, m), m) && !locked_edge[edge(h, m)]) {
-          const V v = split(h, t);
-          uv[v] = p;
-          locked[v] = true;
-          return v;
+        if(is_border(edge(h, m), m)) throw Internal_error("point_on_border", "a layout node falls on the border of its piece between two border vertices");
+        if(locked_edge[edge(h, m)]) throw Internal_error("point_on_path", "a layout node falls on a path inserted before");
+        const Vec a = uv[source(h, m)], b = uv[target(h, m)];
+        const double t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0., 1.);
+        const V v = split(h, t);
+        uv[v] = p; // exactly on the edge, strictly between its ends: every triangle stays positive
+        locked[v] = true;
+        return v;
+      }
+      // Within reach of an interior edge: split it at the projection, then move onto p.
+      std::size_t best = 3;
+      double bd = std::numeric_limits<double>::infinity(), bt = 0.;
+      for(std::size_t k = 0; k < 3; ++k) {
+        const H h = hs[k];
+        if(is_border(edge(h, m), m) || locked_edge[edge(h, m)]) continue;
+        const Vec a = uv[source(h, m)], b = uv[target(h, m)];
+        const double t = (p - a).dot(b - a) / (b - a).squaredNorm();
+        if(!(t > 0 && t < 1)) continue;
+        const double d = std::abs(cross(b - a, p - a)) / (b - a).norm();
+        if(d <= reach && d < bd) {
+          bd = d;
+          bt = t;
+          best = k;
         }
       }
-      // Strictly inside: a centre vertex, by barycentric interpolation.
-      const V a = source(hs[0], m), b = target(hs[0], m), c = target(hs[1], m);
+      if(best < 3) {
+        const V v = split(hs[best], bt);
+        try_move(v, p);
+        locked[v] = true;
+        return v;
+      }
+      // Strictly inside: a centre vertex, 3D by barycentric interpolation.
+      const V a = source(h0, m), b = target(h0, m), c = target(hs[1], m);
       const double area = cross(uv[b] - uv[a], uv[c] - uv[a]);
       const double la = cross(uv[b] - p, uv[c] - p) / area, lb = cross(uv[c] - p, uv[a] - p) / area, lc = 1 - la - lb;
       const Eigen::Vector3d x = la * point3(m, a) + lb * point3(m, b) + lc * point3(m, c);
@@ -145,84 +187,131 @@ struct Segment_inserter
     throw Internal_error("point_outside", "a layout node falls outside its piece's parametric domain");
   }
 
-  static double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-  void lock_step(V a, V b)
-  {
-    locked[a] = locked[b] = true;
-    locked_edge[edge(halfedge(a, b, m).first, m)] = true;
-  }
-
   std::vector<V> insert_segment(V a, V b, double snap)
   {
     std::vector<V> path{a};
-    locked[a] = true;
-    const K::Point_2 B = pt(b);
-    V cur = a;
+    locked[a] = locked[b] = true;
+    if(a == b) return path;
+    const Vec A = uv[a], B = uv[b], D = B - A;
+    auto side = [&](V v) { return uv_orientation(A, B, uv[v]); };
+    auto ahead = [&](const Vec& x) { return (x - A).dot(D); };
+    auto step = [&](V from, V to) {
+      const auto he = halfedge(from, to, m);
+      if(!he.second) throw Internal_error("segment_crossing", "a layout path step is not a mesh edge");
+      locked_edge[edge(he.first, m)] = true;
+      locked[to] = true;
+      path.push_back(to);
+    };
+    const std::size_t limit = 4 * (num_faces(m) + num_vertices(m)) + 16;
     std::size_t guard = 0;
+    V cur = a;
     while(cur != b) {
-      if(++guard > 4 * num_halfedges(m) + 16) throw Internal_error("segment_crossing", "a layout segment does not reach its end");
-      const auto direct = halfedge(cur, b, m);
-      if(direct.second) {
-        if(locked_edge[edge(direct.first, m)]) throw Internal_error("segment_crossing", "a layout segment runs along another one");
-        lock_step(cur, b);
-        path.push_back(b);
-        break;
-      }
-      const K::Point_2 C = pt(cur);
-      const Eigen::Vector2d dir = uv[b] - uv[cur];
-      bool moved = false;
+      // At a vertex on the line (exactly, or moved onto it by a snap): leave it forward,
+      // through a vertex on the line or across the opposite edge of a triangle around it.
+      const double s_cur = ahead(uv[cur]);
+      V via;
+      H across;
+      double best = std::numeric_limits<double>::infinity();
       for(const H h : halfedges_around_target(halfedge(cur, m), m)) {
-        // Triangle (cur, p, q) counter-clockwise: h' = opposite(h) leaves cur.
-        const H out = opposite(h, m);
-        if(is_border(out, m)) continue;
-        const V p = target(out, m), q = target(next(out, m), m);
-        const CGAL::Orientation op = CGAL::orientation(C, B, pt(p)), oq = CGAL::orientation(C, B, pt(q));
-        // Through a vertex exactly on the ray.
-        for(const V w : {p, q}) {
-          if((w == p ? op : oq) == CGAL::COLLINEAR && (uv[w] - uv[cur]).dot(dir) > 0) {
-            if(w != b && is_locked(w)) throw Internal_error("segment_crossing", "a layout segment passes through a locked vertex");
-            if(locked_edge[edge(halfedge(cur, w, m).first, m)]) throw Internal_error("segment_crossing", "a layout segment runs along another one");
-            lock_step(cur, w);
-            path.push_back(w);
-            cur = w;
-            moved = true;
-            break;
+        if(is_border(h, m)) continue;
+        // h: w -> cur; triangle (cur, u, w) counter-clockwise; g = u -> w.
+        const V u = target(next(h, m), m), w = source(h, m);
+        const CGAL::Orientation su = side(u), sw = side(w);
+        for(const auto& [x, sx] : {std::make_pair(u, su), std::make_pair(w, sw)}) {
+          const double s = ahead(uv[x]);
+          if(sx == CGAL::COLLINEAR && s > s_cur && s < best) {
+            best = s;
+            via = x;
+            across = H();
           }
         }
-        if(moved) break;
-        // The ray leaves through the opposite edge (p, q): p right of it, q left.
-        if(!(op == CGAL::RIGHT_TURN && oq == CGAL::LEFT_TURN)) continue;
-        const H pq = next(out, m); // p -> q
-        if(is_border(edge(pq, m), m)) throw Internal_error("segment_crossing", "a layout segment leaves its piece");
-        const double dp = cross(uv[b] - uv[cur], uv[p] - uv[cur]), dq = cross(uv[b] - uv[cur], uv[q] - uv[cur]);
-        const double t = dp / (dp - dq);
-        const double len = (uv[q] - uv[p]).norm();
-        V next_v;
-        if(t * len <= snap * len && !is_locked(p)) next_v = p;
-        else if((1 - t) * len <= snap * len && !is_locked(q)) next_v = q;
-        else {
-          if(locked_edge[edge(pq, m)]) throw Internal_error("segment_crossing", "a layout segment crosses another one");
-          next_v = split(pq, std::clamp(t, 1e-9, 1 - 1e-9));
+        if(su == CGAL::RIGHT_TURN && sw == CGAL::LEFT_TURN) {
+          const double du = cross(D, uv[u] - A), dw = cross(D, uv[w] - A);
+          const double t = std::clamp(du / (du - dw), 0., 1.);
+          const double s = ahead((1 - t) * uv[u] + t * uv[w]);
+          if(s > s_cur && s < best) {
+            best = s;
+            via = V();
+            across = next(next(h, m), m);
+          }
         }
-        lock_step(cur, next_v);
-        path.push_back(next_v);
-        cur = next_v;
-        moved = true;
-        break;
       }
-      if(!moved) throw Internal_error("segment_crossing", "a layout segment finds no triangle to enter");
+      if(via != V()) {
+        if(locked_edge[edge(halfedge(cur, via, m).first, m)]) throw Internal_error("segment_crossing", "a layout segment runs along a path inserted before");
+        if(via != b && is_locked(via)) throw Internal_error("segment_crossing", "a layout segment passes through a locked vertex");
+        step(cur, via);
+        cur = via;
+        if(++guard > limit) throw Internal_error("segment_crossing", "a layout segment does not reach its end");
+        continue;
+      }
+      if(across == H()) throw Internal_error("segment_crossing", "a layout segment finds no triangle to enter");
+      // Across edges: g = u -> w with u right and w left of the line, the triangle on its left
+      // holding the previous path vertex.
+      H g = across;
+      V prev = cur;
+      while(true) {
+        if(++guard > limit) throw Internal_error("segment_crossing", "a layout segment does not reach its end");
+        const V u = source(g, m), w = target(g, m);
+        if(locked_edge[edge(g, m)]) throw Internal_error("segment_crossing", "a layout segment crosses a path inserted before");
+        const double du = cross(D, uv[u] - A), dw = cross(D, uv[w] - A);
+        const double t = std::clamp(du / (du - dw), 0., 1.);
+        const Vec X = (1 - t) * uv[u] + t * uv[w];
+        if(t <= snap && !is_locked(u) && try_move(u, X)) {
+          step(prev, u);
+          cur = u;
+          break;
+        }
+        if(1 - t <= snap && !is_locked(w) && try_move(w, X)) {
+          step(prev, w);
+          cur = w;
+          break;
+        }
+        const H o = opposite(g, m);
+        if(is_border(o, m)) throw Internal_error("segment_crossing", "a layout segment would split a border edge");
+        // Far triangle (w, u, r): o = w -> u, then u -> r, r -> w.
+        const H ur = next(o, m), rw = next(ur, m);
+        const V r = target(ur, m);
+        const CGAL::Orientation sr = side(r);
+        if(sr == CGAL::COLLINEAR && r != b && is_locked(r)) throw Internal_error("segment_crossing", "a layout segment passes through a locked vertex");
+        // The four triangles around the crossing must be positive: they are unless the line
+        // passes within rounding of a vertex that cannot snap.
+        const V c = target(next(g, m), m);
+        if(uv_orientation(uv[u], X, uv[c]) != CGAL::LEFT_TURN || uv_orientation(X, uv[w], uv[c]) != CGAL::LEFT_TURN ||
+           uv_orientation(uv[w], X, uv[r]) != CGAL::LEFT_TURN || uv_orientation(X, uv[u], uv[r]) != CGAL::LEFT_TURN)
+          throw Internal_error("segment_crossing", "a layout segment passes within rounding of a locked vertex");
+        const V x = split(g, t);
+        uv[x] = X;
+        step(prev, x);
+        if(sr == CGAL::COLLINEAR) { // r == b or an unlocked vertex exactly on the segment
+          step(x, r);
+          cur = r;
+          break;
+        }
+        g = sr == CGAL::RIGHT_TURN ? rw : ur;
+        prev = x;
+      }
     }
     return path;
   }
 };
 
+/// Inserts the uv point p: an existing vertex if p is on it or within `snap` (relative to the
+/// shortest edge of the containing triangle) of an unlocked one (moved onto p when its
+/// triangles stay positive); else splits an edge p is exactly on, or an interior unlocked
+/// edge within the snap distance (the new vertex moved onto p likewise); else splits the
+/// containing triangle into three, 3D by barycentric interpolation. The vertex is locked.
+/// Throws Internal_error("point_outside") if p is in no triangle, ("point_on_border") if it
+/// lies exactly on a border edge, ("point_on_path") if exactly on an earlier path's edge.
 template <class P>
 typename CGAL::Surface_mesh<P>::Vertex_index insert_point(CGAL::Surface_mesh<P>& piece, const Eigen::Vector2d& p, double snap = 1e-3)
 {
   return Segment_inserter<P>(piece).insert_point(p, snap);
 }
 
+/// Inserts the straight uv segment from a to b and returns the vertex path a..b along mesh
+/// edges (locked, with its edges). See the file comment; throws Internal_error
+/// ("segment_crossing") when it would cross, run along or pass through an earlier path or a
+/// locked vertex, or split a border edge.
 template <class P>
 std::vector<typename CGAL::Surface_mesh<P>::Vertex_index> insert_segment(CGAL::Surface_mesh<P>& piece,
                                                                          typename CGAL::Surface_mesh<P>::Vertex_index a,
