@@ -408,45 +408,76 @@ private:
       centroid[f] = (g.position[g.face_vertices[f][0]] + g.position[g.face_vertices[f][1]] +
                      g.position[g.face_vertices[f][2]]) / 3.0;
 
+    const double infinity = std::numeric_limits<double>::infinity();
+    const std::vector<char> none(nf, 0);
+    struct Link { double distance; std::vector<int> chain; }; // chain: faces, empty if none
+    std::map<std::pair<int, int>, Link> links;                // by the holes' keys
     while(holes.size() > 3) {
       const int k = int(holes.size());
       std::vector<std::vector<int>> faces_of_hole(k);
       for(int i = 0; i < k; ++i) faces_of_hole[i] = hole_faces(holes[i]);
-      // Dual distances from each hole.
-      std::vector<Face_tree> trees;
-      std::vector<std::vector<double>> dist(k, std::vector<double>(k, std::numeric_limits<double>::infinity()));
-      std::vector<std::vector<int>> closest(k, std::vector<int>(k, -1));
-      const std::vector<char> none(nf, 0);
-      for(int i = 0; i < k; ++i) {
-        trees.push_back(face_tree(g, faces_of_hole[i], is_cut, pants_of, centroid, none));
-        for(int j = 0; j < k; ++j) {
-          if(j == i) continue;
-          for(int f : faces_of_hole[j])
-            if(trees[i].distance[f] < dist[i][j]) { dist[i][j] = trees[i].distance[f]; closest[i][j] = f; }
-        }
+      const Holes_at_faces at(nf, faces_of_hole);
+      // Dual distances between holes, with a shortest face chain for each pair. A chain that
+      // the last pants left alone is still shortest (the region only shrank), so only the
+      // pairs whose chain it took, and those of the new hole, are searched again: from the
+      // hole in most of them, until all its partners are reached (the first face of a hole
+      // settled is the closest).
+      auto pair_key = [&](int i, int j) {
+        const int a = 2 * holes[i].cycle + holes[i].side, b = 2 * holes[j].cycle + holes[j].side;
+        return std::make_pair(std::min(a, b), std::max(a, b));
+      };
+      for(auto it = links.begin(); it != links.end();) {
+        bool alive = true;
+        for(int f : it->second.chain) alive = alive && pants_of[f] == -1;
+        it = alive ? std::next(it) : links.erase(it);
       }
+      for(;;) {
+        std::vector<int> wanted(k, 0);
+        for(int i = 0; i < k; ++i)
+          for(int j = i + 1; j < k; ++j)
+            if(!links.count(pair_key(i, j))) { ++wanted[i]; ++wanted[j]; }
+        const int i = int(std::max_element(wanted.begin(), wanted.end()) - wanted.begin());
+        if(wanted[i] == 0) break;
+        std::vector<char> pending(k, 0);
+        for(int j = 0; j < k; ++j)
+          pending[j] = j != i && !links.count(pair_key(i, j));
+        int missing = wanted[i];
+        std::vector<std::pair<int, int>> found; // (hole, face)
+        const Face_tree t = face_tree(g, faces_of_hole[i], is_cut, pants_of, centroid, none, [&](int f, double) {
+          for(int l = at.head[f]; l >= 0; l = at.next[l]) {
+            const int j = at.hole[l];
+            if(pending[j]) { pending[j] = 0; found.push_back({j, f}); --missing; }
+          }
+          return missing == 0;
+        });
+        for(auto [j, f] : found) {
+          Link link{t.distance[f], {}};
+          for(int x = f; x >= 0; x = t.parent[x]) link.chain.push_back(x);
+          links[pair_key(i, j)] = std::move(link);
+        }
+        for(int j = 0; j < k; ++j) // unreachable holes
+          if(pending[j]) links[pair_key(i, j)] = Link{infinity, {}};
+      }
+      auto link_of = [&](int i, int j) -> const Link& { return links.at(pair_key(i, j)); };
       auto cycle_length = [&](int h) {
         double l = 0;
         for(int e : cycles[holes[h].cycle].edges) l += w[e];
         return l;
       };
       int bi = -1, bj = -1;
-      double best = std::numeric_limits<double>::infinity();
+      double best = infinity;
       for(int i = 0; i < k; ++i)
         for(int j = i + 1; j < k; ++j) {
-          const double estimate = cycle_length(i) + cycle_length(j) + 2 * dist[i][j];
+          const double estimate = cycle_length(i) + cycle_length(j) + 2 * link_of(i, j).distance;
           if(estimate < best) { best = estimate; bi = i; bj = j; }
         }
-      if(bi < 0 || closest[bi][bj] < 0) return false;
+      if(bi < 0 || link_of(bi, bj).chain.empty()) return false;
 
       // Source: faces along holes i, j and along a shortest face chain joining them.
       std::vector<char> source(nf, 0), sink(nf, 0), near_source(nf, 0);
-      auto mark_chain = [&](const Face_tree& t, int from, std::vector<char>& side) {
-        for(int f = from; f >= 0; f = t.parent[f]) side[f] = 1;
-      };
       for(int f : faces_of_hole[bi]) source[f] = 1;
       for(int f : faces_of_hole[bj]) source[f] = 1;
-      mark_chain(trees[bi], closest[bi][bj], source);
+      for(int f : link_of(bi, bj).chain) source[f] = 1;
       // Sink: the other holes, joined by face chains kept off the source's vertices.
       std::vector<char> source_vertex(nv, 0);
       // (Vertices on cycles excepted: the faces across a cycle belong to another hole.)
@@ -455,62 +486,60 @@ private:
         for(int v : g.face_vertices[f]) if(source_vertex[v]) near_source[f] = 1;
       std::vector<int> others;
       for(int i = 0; i < k; ++i) if(i != bi && i != bj) others.push_back(i);
-      std::vector<int> joined{others[0]};
+      std::vector<char> joined(k, 0);
+      joined[others[0]] = 1;
       std::vector<int> seeds(faces_of_hole[others[0]]);
       for(int f : seeds) sink[f] = 1;
       for(std::size_t n = 1; n < others.size(); ++n) {
-        Face_tree t = face_tree(g, seeds, is_cut, pants_of, centroid, near_source);
+        // Grow from the joined holes until the nearest other hole is reached.
         int next = -1, target = -1;
-        double d = std::numeric_limits<double>::infinity();
-        for(int h : others) {
-          if(std::find(joined.begin(), joined.end(), h) != joined.end()) continue;
-          for(int f : faces_of_hole[h])
-            if(t.distance[f] < d) { d = t.distance[f]; next = h; target = f; }
-        }
+        const Face_tree t = face_tree(g, seeds, is_cut, pants_of, centroid, near_source, [&](int f, double) {
+          for(int l = at.head[f]; l >= 0; l = at.next[l]) {
+            const int h = at.hole[l];
+            if(h != bi && h != bj && !joined[h]) { next = h; target = f; return true; }
+          }
+          return false;
+        });
         if(next < 0) return false; // the source walls the other holes apart: refine
-        joined.push_back(next);
+        joined[next] = 1;
         for(int f : faces_of_hole[next]) { sink[f] = 1; seeds.push_back(f); }
         for(int f = target; f >= 0; f = t.parent[f]) { sink[f] = 1; seeds.push_back(f); }
       }
       for(int f = 0; f < nf; ++f) if(source[f] && sink[f]) return false;
 
       // Minimum cut in the dual graph of the region; edges touching a cycle are uncuttable.
-      std::vector<int> node(nf, -1);
-      int nodes = 0;
-      for(int f = 0; f < nf; ++f) if(in_region(f)) node[f] = nodes++;
-      const int S = nodes, T = nodes + 1;
-      internal::Min_cut cut(nodes + 2);
-      for(int e = 0; e < g.number_of_edges(); ++e) {
-        const int f0 = g.edge_faces[e][0], f1 = g.edge_faces[e][1];
-        if(is_cut[e] || !in_region(f0) || !in_region(f1)) continue;
-        const bool touches = on_cycle[g.edge_vertices[e][0]] || on_cycle[g.edge_vertices[e][1]];
-        cut.add_undirected(node[f0], node[f1], touches ? internal::Min_cut::infinity() : w[e]);
+      // The region is planar: a shortest separating cycle (separating_cycle_cut()); the
+      // maximum flow where that does not apply.
+      const Cut_problem problem{g, w, is_cut, on_cycle, pants_of, source, sink};
+      std::vector<char> side;
+      double value = separating_cycle_cut(problem, side);
+      if(value < infinity) {
+        // Among cuts of that weight, the one nearest the source (minimal source side): a flow
+        // inside the source side found, which holds it.
+        const std::vector<char> inside = side;
+        value = band_min_cut(problem, &inside, side);
       }
-      for(int f = 0; f < nf; ++f) {
-        if(source[f]) cut.add_directed(S, node[f], internal::Min_cut::infinity());
-        if(sink[f]) cut.add_directed(node[f], T, internal::Min_cut::infinity());
-      }
-      if(cut.max_flow(S, T) >= 0.5 * internal::Min_cut::infinity()) return false;
-      const std::vector<char> side = cut.source_side(S);
+      if(!(value < infinity)) value = band_min_cut(problem, nullptr, side);
+      if(!(value < infinity)) return false;
 
       // The cut edges must form one simple cycle.
       std::vector<int> cut_edges;
       for(int e = 0; e < g.number_of_edges(); ++e) {
         const int f0 = g.edge_faces[e][0], f1 = g.edge_faces[e][1];
         if(is_cut[e] || !in_region(f0) || !in_region(f1)) continue;
-        if(side[node[f0]] != side[node[f1]]) cut_edges.push_back(e);
+        if(side[f0] != side[f1]) cut_edges.push_back(e);
       }
       std::vector<int> new_cycle;
       if(!order_simple_cycle(g, cut_edges, new_cycle)) return false;
       // Orient it with the pants (source side) on its left.
       Cycle_edges c = cycle_edges(g, new_cycle);
       const int left = face_on_side(g, c, 0, 0);
-      if(!(left >= 0 && left < nf && node[left] >= 0 && side[node[left]])) {
+      if(!(in_region(left) && side[left])) {
         std::reverse(new_cycle.begin(), new_cycle.end());
         c = cycle_edges(g, new_cycle);
       }
       const int id = int(patches.size());
-      for(int f = 0; f < nf; ++f) if(node[f] >= 0 && side[node[f]]) pants_of[f] = id;
+      for(int f = 0; f < nf; ++f) if(in_region(f) && side[f]) pants_of[f] = id;
       patches.push_back({{holes[bi].cycle, holes[bj].cycle, int(cycles.size())}});
       for(int e : c.edges) is_cut[e] = 1;
       for(int v : c.vertices) on_cycle[v] = 1;
@@ -560,9 +589,11 @@ private:
 
   // Dijkstra over the faces of the region (pants_of == -1) across non-cut edges, from
   // `seeds`, never entering `blocked` faces (seeds excepted); lengths between centroids.
+  // `stop(f, d)` is called as face f is settled at distance d and ends the search when true.
+  template <class Stop>
   static Face_tree face_tree(const Graph& g, const std::vector<int>& seeds, const std::vector<char>& is_cut,
                              const std::vector<int>& pants_of, const std::vector<Eigen::Vector3d>& centroid,
-                             const std::vector<char>& blocked)
+                             const std::vector<char>& blocked, Stop&& stop)
   {
     const int nf = g.number_of_faces();
     Face_tree t{std::vector<double>(nf, std::numeric_limits<double>::infinity()), std::vector<int>(nf, -1)};
@@ -575,6 +606,7 @@ private:
       queue.pop();
       if(settled[f]) continue;
       settled[f] = 1;
+      if(stop(f, d)) break;
       for(int e : g.face_edges[f]) {
         if(is_cut[e]) continue;
         const int h = g.edge_faces[e][0] == f ? g.edge_faces[e][1] : g.edge_faces[e][0];
@@ -584,6 +616,390 @@ private:
       }
     }
     return t;
+  }
+
+  static std::vector<int> seeds_of(const std::vector<char>& mark)
+  {
+    std::vector<int> s;
+    for(std::size_t f = 0; f < mark.size(); ++f) if(mark[f]) s.push_back(int(f));
+    return s;
+  }
+
+  // The holes along each face, as linked lists (a face may lie along several holes).
+  struct Holes_at_faces
+  {
+    std::vector<int> head, next, hole;
+    Holes_at_faces(int nf, const std::vector<std::vector<int>>& faces_of_hole) : head(nf, -1)
+    {
+      for(std::size_t i = 0; i < faces_of_hole.size(); ++i)
+        for(int f : faces_of_hole[i]) {
+          next.push_back(head[f]);
+          hole.push_back(int(i));
+          head[f] = int(hole.size()) - 1;
+        }
+    }
+  };
+
+  // One step's minimum-cut problem: the dual graph of the region (faces with pants_of ==
+  // -1, joined across non-cut edges), capacity w[e], infinite for edges touching a cycle
+  // vertex, between the `source` and the `sink` faces.
+  struct Cut_problem
+  {
+    const Graph& g;
+    const std::vector<double>& w;
+    const std::vector<char>& is_cut;
+    const std::vector<char>& on_cycle;
+    const std::vector<int>& pants_of;
+    const std::vector<char>& source;
+    const std::vector<char>& sink;
+
+    bool in_region(int f) const { return f >= 0 && f < g.number_of_faces() && pants_of[f] == -1; }
+    bool joins(int e) const { return !is_cut[e] && in_region(g.edge_faces[e][0]) && in_region(g.edge_faces[e][1]); }
+    bool finite(int e) const { return !on_cycle[g.edge_vertices[e][0]] && !on_cycle[g.edge_vertices[e][1]]; }
+    // An edge some finite cut can contain: joins, finite, not inside the source or the sink.
+    bool cuttable(int e) const
+    {
+      if(!joins(e) || !finite(e)) return false;
+      const int f0 = g.edge_faces[e][0], f1 = g.edge_faces[e][1];
+      return !(source[f0] && source[f1]) && !(sink[f0] && sink[f1]);
+    }
+  };
+
+  // The cut of `p` as the shortest separating cycle of a planar annulus (reference §2.2.1.2,
+  // Algorithm 2, made exact with the divide and conquer of Reif / Itai and Shiloach). A
+  // finite cut is a closed curve along cuttable edges (Cut_problem::cuttable) around the
+  // source, the region being of genus 0: a shortest one is a shortest cycle of the graph A of
+  // cuttable edges that separates the source faces from the sink faces. Let gamma be a
+  // shortest path in A from a vertex of the source to one of the sink. Some shortest
+  // separating cycle meets gamma along one subpath and crosses it once (a second meeting
+  // could be short-cut along gamma), so, A being cut open along gamma into a disk D where
+  // each vertex g_i of gamma has a right and a left copy, the cut is the shortest of the
+  // paths P_i from the right to the left copy of g_i. These paths can be taken pairwise
+  // non-crossing, so P_m for the middle index splits D into the parts where the P_i below
+  // and above m run: O(log |gamma|) rounds of Dijkstra searches whose regions share only
+  // paths. Fills `side` (1 on the source side) and returns the cycle's weight; infinite
+  // when the region does not fit this picture (then band_min_cut() decides).
+  static double separating_cycle_cut(const Cut_problem& p, std::vector<char>& side)
+  {
+    const Graph& g = p.g;
+    const int nf = g.number_of_faces(), nv = g.number_of_vertices(), ne = g.number_of_edges();
+    const double infinity = std::numeric_limits<double>::infinity();
+    std::vector<char> touches_source(nv, 0), touches_sink(nv, 0), in_a(nv, 0), cuttable(ne, 0);
+    for(int f = 0; f < nf; ++f)
+      if(p.in_region(f))
+        for(int v : g.face_vertices[f]) { touches_source[v] |= p.source[f]; touches_sink[v] |= p.sink[f]; }
+    for(int e = 0; e < ne; ++e)
+      if(p.cuttable(e)) { cuttable[e] = 1; in_a[g.edge_vertices[e][0]] = in_a[g.edge_vertices[e][1]] = 1; }
+
+    // gamma: Dijkstra in A from the vertices along the source to the first along the sink.
+    std::vector<int> gamma, gamma_edge;
+    {
+      std::vector<double> d(nv, infinity);
+      std::vector<int> parent_edge(nv, -1);
+      std::vector<char> settled(nv, 0);
+      using Item = std::pair<double, int>;
+      std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+      for(int v = 0; v < nv; ++v) if(in_a[v] && touches_source[v]) { d[v] = 0; queue.push({0.0, v}); }
+      int end = -1;
+      while(!queue.empty()) {
+        auto [dv, v] = queue.top();
+        queue.pop();
+        if(settled[v]) continue;
+        settled[v] = 1;
+        if(touches_sink[v]) { end = v; break; }
+        for(int a = g.offset[v]; a < g.offset[v + 1]; ++a) {
+          const int u = g.adjacent_vertex[a], e = g.adjacent_edge[a];
+          if(!cuttable[e] || settled[u]) continue;
+          if(dv + p.w[e] < d[u]) { d[u] = dv + p.w[e]; parent_edge[u] = e; queue.push({d[u], u}); }
+        }
+      }
+      if(end < 0) return infinity;
+      for(int v = end;; ) {
+        gamma.push_back(v);
+        const int e = parent_edge[v];
+        if(e < 0) break;
+        gamma_edge.push_back(e);
+        v = g.other_vertex(e, v);
+      }
+      std::reverse(gamma.begin(), gamma.end());
+      std::reverse(gamma_edge.begin(), gamma_edge.end());
+    }
+    const int L = int(gamma.size()) - 1;
+    if(L < 1) return infinity; // source and sink meet at a vertex
+    std::vector<int> gamma_index(nv, -1);
+    for(int i = 0; i <= L; ++i) gamma_index[gamma[i]] = i;
+    std::vector<char> is_gamma_edge(ne, 0);
+    for(int e : gamma_edge) is_gamma_edge[e] = 1;
+
+    // Sides of the edges at gamma's vertices, from the rotation around each (faces are
+    // counterclockwise; turning counterclockwise from the forward edge sweeps the left).
+    // end_side[e][k]: 0 unset, 1 right, 2 left, 3 dropped, for the k-th end of e.
+    std::vector<std::array<signed char, 2>> end_side(ne, {{0, 0}});
+    auto set_side = [&](int e, int v, signed char s) { end_side[e][g.edge_vertices[e][0] == v ? 0 : 1] = s; };
+    auto left_face = [&](int e, int v) { return g.edge_faces[e][g.edge_vertices[e][0] == v ? 0 : 1]; };
+    auto other_edge = [&](int f, int v, int e) {
+      for(int x : g.face_edges[f])
+        if(x != e && (g.edge_vertices[x][0] == v || g.edge_vertices[x][1] == v)) return x;
+      return -1;
+    };
+    // Walks around v from edge `start`, counterclockwise (ccw) or not, marking the edges
+    // passed with `s` until `stop_edge` or a face for which `stop_face` holds; false when
+    // the walk leaves the region's faces.
+    auto walk = [&](int v, int start, bool ccw, int stop_edge, const std::vector<char>* stop_face, signed char s) {
+      int e = start;
+      for(int guard = 0; guard < 1000; ++guard) {
+        const int f = ccw ? left_face(e, v) : left_face(e, g.other_vertex(e, v));
+        if(!p.in_region(f)) return false;
+        if(stop_face && (*stop_face)[f]) return true;
+        e = other_edge(f, v, e);
+        if(e < 0) return false;
+        if(e == stop_edge) return true;
+        if(e == start) return false;
+        set_side(e, v, s);
+      }
+      return false;
+    };
+    const signed char RIGHT = 1, LEFT = 2, DROPPED = 3;
+    for(int i = 0; i <= L; ++i) {
+      const int v = gamma[i];
+      for(int a = g.offset[v]; a < g.offset[v + 1]; ++a) set_side(g.adjacent_edge[a], v, DROPPED);
+      bool ok;
+      if(i == 0)
+        ok = walk(v, gamma_edge[0], true, -1, &p.source, LEFT) && walk(v, gamma_edge[0], false, -1, &p.source, RIGHT);
+      else if(i == L)
+        ok = walk(v, gamma_edge[L - 1], false, -1, &p.sink, LEFT) && walk(v, gamma_edge[L - 1], true, -1, &p.sink, RIGHT);
+      else
+        ok = walk(v, gamma_edge[i], true, gamma_edge[i - 1], nullptr, LEFT) &&
+             walk(v, gamma_edge[i - 1], true, gamma_edge[i], nullptr, RIGHT);
+      if(!ok) return infinity;
+    }
+
+    // D: A cut open along gamma. Vertex ids: A's own, the right copy of g_i being g_i itself
+    // and its left copy nv + i. Adjacency in CSR form.
+    const int nd = nv + L + 1;
+    auto copy_of = [&](int e, int k) -> int {
+      const int v = g.edge_vertices[e][k];
+      if(gamma_index[v] < 0) return v;
+      const signed char s = end_side[e][k];
+      return s == RIGHT ? v : (s == LEFT ? nv + gamma_index[v] : -1);
+    };
+    std::vector<std::array<int, 3>> arcs; // (a, b, edge)
+    for(int e = 0; e < ne; ++e) {
+      if(!cuttable[e]) continue;
+      if(is_gamma_edge[e]) {
+        const int a = g.edge_vertices[e][0], b = g.edge_vertices[e][1];
+        arcs.push_back({a, b, e});
+        arcs.push_back({nv + gamma_index[a], nv + gamma_index[b], e});
+        continue;
+      }
+      const int a = copy_of(e, 0), b = copy_of(e, 1);
+      if(a >= 0 && b >= 0) arcs.push_back({a, b, e});
+    }
+    std::vector<int> first(nd + 1, 0), next_vertex(2 * arcs.size()), next_edge(2 * arcs.size());
+    for(const auto& a : arcs) { ++first[a[0] + 1]; ++first[a[1] + 1]; }
+    for(int v = 0; v < nd; ++v) first[v + 1] += first[v];
+    {
+      std::vector<int> fill(first.begin(), first.end() - 1);
+      for(const auto& a : arcs) {
+        next_vertex[fill[a[0]]] = a[1]; next_edge[fill[a[0]]++] = a[2];
+        next_vertex[fill[a[1]]] = a[0]; next_edge[fill[a[1]]++] = a[2];
+      }
+    }
+    auto gamma_of = [&](int x) { return x >= nv ? x - nv : gamma_index[x]; }; // -1 off gamma
+
+    // Divide and conquer over the indices of gamma.
+    std::vector<double> dist(nd, infinity);
+    std::vector<int> parent(nd, -1), stamp(nd, 0), member(nd, 0), done(nd, 0), component(nd, -1);
+    int search = 0, region_stamp = 0;
+    double best = infinity;
+    std::vector<int> best_path;
+    struct Task { int lo, hi; std::vector<int> vertices; };
+    std::vector<Task> tasks;
+    {
+      Task all{-1, L + 1, {}};
+      for(int x = 0; x < nd; ++x) if(x >= nv || in_a[x]) all.vertices.push_back(x);
+      tasks.push_back(std::move(all));
+    }
+    using Item = std::pair<double, int>;
+    while(!tasks.empty()) {
+      Task task = std::move(tasks.back());
+      tasks.pop_back();
+      if(task.hi - task.lo <= 1) continue;
+      const int m = (task.lo + task.hi) / 2;
+      ++region_stamp;
+      for(int x : task.vertices) member[x] = region_stamp;
+      // P_m: Dijkstra inside the task's vertices from the right to the left copy of g_m.
+      ++search;
+      const int from = gamma[m], to = nv + m;
+      std::vector<int> path;
+      if(member[from] == region_stamp && member[to] == region_stamp) {
+        std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+        stamp[from] = search; dist[from] = 0; parent[from] = -1;
+        queue.push({0.0, from});
+        while(!queue.empty()) {
+          auto [dx, x] = queue.top();
+          queue.pop();
+          if(done[x] == search) continue;
+          done[x] = search;
+          if(x == to) break;
+          for(int a = first[x]; a < first[x + 1]; ++a) {
+            const int y = next_vertex[a];
+            if(member[y] != region_stamp || done[y] == search) continue;
+            const double dy = dx + p.w[next_edge[a]];
+            if(stamp[y] != search || dy < dist[y]) { stamp[y] = search; dist[y] = dy; parent[y] = x; queue.push({dy, y}); }
+          }
+        }
+        if(done[to] == search) {
+          for(int x = to; x >= 0; x = parent[x]) path.push_back(x);
+          if(dist[to] < best) { best = dist[to]; best_path = path; }
+        }
+      }
+      // Split the task's vertices by P_m (kept in both halves); without P_m, both halves
+      // keep all of them.
+      Task below{task.lo, m, {}}, above{m, task.hi, {}};
+      if(path.empty()) {
+        below.vertices = task.vertices;
+        above.vertices = std::move(task.vertices);
+      } else {
+        const int on_path = -2;
+        for(int x : path) component[x] = on_path;
+        for(int x : task.vertices) if(component[x] != on_path) component[x] = -1;
+        std::vector<int> stack, members;
+        for(int x0 : task.vertices) {
+          if(component[x0] != -1) continue;
+          members.clear();
+          stack.assign(1, x0);
+          component[x0] = 0;
+          int lowest = L + 2, highest = -2;
+          while(!stack.empty()) {
+            const int x = stack.back();
+            stack.pop_back();
+            members.push_back(x);
+            const int gi = gamma_of(x);
+            if(gi >= 0) { lowest = std::min(lowest, gi); highest = std::max(highest, gi); }
+            for(int a = first[x]; a < first[x + 1]; ++a) {
+              const int y = next_vertex[a];
+              if(member[y] != region_stamp || component[y] != -1) continue;
+              component[y] = 0;
+              stack.push_back(y);
+            }
+          }
+          if(lowest < m) below.vertices.insert(below.vertices.end(), members.begin(), members.end());
+          if(highest > m) above.vertices.insert(above.vertices.end(), members.begin(), members.end());
+        }
+        for(int x : path) { below.vertices.push_back(x); above.vertices.push_back(x); component[x] = -1; }
+        task.vertices.clear();
+      }
+      tasks.push_back(std::move(above));
+      tasks.push_back(std::move(below));
+    }
+    if(!(best < infinity)) return infinity;
+
+    // The cycle in A: the path from the right copy of g_m back to its left copy.
+    std::vector<char> on_new(nv, 0), new_edge(ne, 0);
+    std::vector<int> cycle;
+    for(std::size_t i = 0; i + 1 < best_path.size(); ++i) {
+      const int x = best_path[i];
+      cycle.push_back(x >= nv ? gamma[x - nv] : x);
+    }
+    for(std::size_t i = 0; i < cycle.size(); ++i) {
+      const int a = cycle[i], b = cycle[(i + 1) % cycle.size()];
+      if(on_new[a]) return infinity; // not simple (ties): leave it to the flow
+      on_new[a] = 1;
+      int e = -1;
+      for(int k = g.offset[a]; k < g.offset[a + 1]; ++k) if(g.adjacent_vertex[k] == b) e = g.adjacent_edge[k];
+      if(e < 0) return infinity;
+      new_edge[e] = 1;
+    }
+    // Source side: the faces the source reaches without crossing the cycle.
+    side.assign(nf, 0);
+    std::vector<int> stack;
+    for(int f = 0; f < nf; ++f) if(p.in_region(f) && p.source[f]) { side[f] = 1; stack.push_back(f); }
+    while(!stack.empty()) {
+      const int f = stack.back();
+      stack.pop_back();
+      if(p.sink[f]) return infinity; // the cycle does not separate
+      for(int e : g.face_edges[f]) {
+        if(new_edge[e] || !p.joins(e)) continue;
+        const int h = g.edge_faces[e][0] == f ? g.edge_faces[e][1] : g.edge_faces[e][0];
+        if(!side[h]) { side[h] = 1; stack.push_back(h); }
+      }
+    }
+    return best;
+  }
+
+  // Minimum cut of `p` over the faces of `band` (nullptr: the whole region), every connected
+  // component of the rest of the region contracted to one node, merged into the source or
+  // the sink when it holds one of their faces. A cut of this graph is a cut of the region of
+  // the same weight; when the band holds a minimum cut of the region (band_around()), the
+  // result is one. `side[f]`: 1 for the region's faces on the source side. Returns the
+  // weight, infinite when no finite cut exists or a component holds source and sink faces.
+  static double band_min_cut(const Cut_problem& p, const std::vector<char>* band, std::vector<char>& side)
+  {
+    const Graph& g = p.g;
+    const int nf = g.number_of_faces();
+    const double infinity = std::numeric_limits<double>::infinity();
+    std::vector<int> node(nf, -1);
+    int nodes = 0;
+    for(int f = 0; f < nf; ++f) if(p.in_region(f) && (!band || (*band)[f])) node[f] = nodes++;
+    // Components outside the band: flood fill across joining edges.
+    std::vector<int> component(nf, -1), component_node;
+    std::vector<char> component_source, component_sink;
+    if(band) {
+      std::vector<int> stack;
+      for(int f0 = 0; f0 < nf; ++f0) {
+        if(!p.in_region(f0) || (*band)[f0] || component[f0] >= 0) continue;
+        const int c = int(component_node.size());
+        component_node.push_back(-1);
+        component_source.push_back(0);
+        component_sink.push_back(0);
+        component[f0] = c;
+        stack.assign(1, f0);
+        while(!stack.empty()) {
+          const int f = stack.back();
+          stack.pop_back();
+          component_source[c] |= p.source[f];
+          component_sink[c] |= p.sink[f];
+          for(int e : g.face_edges[f]) {
+            if(!p.joins(e)) continue;
+            const int h = g.edge_faces[e][0] == f ? g.edge_faces[e][1] : g.edge_faces[e][0];
+            if((*band)[h] || component[h] >= 0) continue;
+            component[h] = c;
+            stack.push_back(h);
+          }
+        }
+        if(component_source[c] && component_sink[c]) return infinity;
+      }
+      for(std::size_t c = 0; c < component_node.size(); ++c)
+        if(!component_source[c] && !component_sink[c]) component_node[c] = nodes++;
+    }
+    const int S = nodes, T = nodes + 1;
+    for(std::size_t c = 0; c < component_node.size(); ++c)
+      if(component_source[c]) component_node[c] = S;
+      else if(component_sink[c]) component_node[c] = T;
+    auto node_of = [&](int f) { return node[f] >= 0 ? node[f] : component_node[component[f]]; };
+
+    internal::Min_cut cut(nodes + 2);
+    for(int e = 0; e < g.number_of_edges(); ++e) {
+      if(!p.joins(e)) continue;
+      const int n0 = node_of(g.edge_faces[e][0]), n1 = node_of(g.edge_faces[e][1]);
+      if(n0 != n1) cut.add_undirected(n0, n1, p.finite(e) ? p.w[e] : internal::Min_cut::infinity());
+    }
+    for(int f = 0; f < nf; ++f) {
+      if(node[f] < 0) continue;
+      if(p.source[f]) cut.add_directed(S, node[f], internal::Min_cut::infinity());
+      if(p.sink[f]) cut.add_directed(node[f], T, internal::Min_cut::infinity());
+    }
+    const double value = cut.max_flow(S, T);
+    if(value >= 0.5 * internal::Min_cut::infinity()) return infinity;
+    const std::vector<char> node_side = cut.source_side(S);
+    side.assign(nf, 0);
+    for(int f = 0; f < nf; ++f)
+      if(p.in_region(f)) {
+        const int n = node_of(f);
+        side[f] = n == S ? 1 : (n == T ? 0 : node_side[n]);
+      }
+    return value;
   }
 
   // Orders `edges` into one simple closed vertex cycle; false if they form anything else.
