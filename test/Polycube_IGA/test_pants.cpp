@@ -5,12 +5,16 @@
 // (genus 11; genus 5 with 7 boundary loops): counts 2g+b-2 and 3g+b-3, every pants a
 // connected genus-0 surface with 3 boundaries, cycles simple and pairwise disjoint,
 // neighbours consistent, and every cut cycle of a closed solid bounding inside it (its
-// Gauss linking number with every outward push-off of a homology basis is 0).
+// Gauss linking number with every outward push-off of a homology basis is 0). validate()
+// names each broken invariant on corrupted decompositions.
 
 #include "test_geometry.h"
 #include "test_support.h"
 
 #include <CGAL/Polycube_IGA/Pants_decomposition.h>
+
+#include <algorithm>
+#include <set>
 
 #include <catch2/catch.hpp>
 
@@ -28,7 +32,7 @@ void check_pants(const Mesh& input, const Pants::Result& r, int genus, int bound
   CHECK(int(r.pants.size()) == 2 * genus + boundaries - 2);
   CHECK(int(r.number_of_cut_cycles()) == 3 * genus + boundaries - 3);
   const PI::Pants_validation v = Pants::validate(input, r);
-  for(const auto& p : v.problems) INFO(p);
+  for(const auto& p : v.problems) UNSCOPED_INFO(p);
   CHECK(v.is_valid());
   // Neighbours: symmetric across every cycle.
   for(std::size_t p = 0; p < r.pants.size(); ++p)
@@ -62,6 +66,23 @@ void check_cycles_bound_inside(const Mesh& input, const Pants::Result& r)
       CHECK(gauss_linking(pts, points_of(tm, b.vertices, &geo, +1)) == 0);
   }
 }
+
+/// True when one of validate()'s problems contains `what`.
+bool names(const PI::Pants_validation& v, const std::string& what)
+{
+  for(const auto& p : v.problems) UNSCOPED_INFO(p);
+  return std::any_of(v.problems.begin(), v.problems.end(),
+                     [&](const std::string& p) { return p.find(what) != std::string::npos; });
+}
+
+/// eight.off (genus 2), its topology with tunnel loops, and its decomposition (valid).
+struct Eight
+{
+  Mesh mesh = load(data("eight.off"));
+  PI::Surface_topology_result<Mesh> topology = PI::Surface_topology<Mesh>()(mesh);
+  Pants::Result pants = Pants()(mesh, PIP::surface_topology(topology));
+  Eight() { REQUIRE(Pants::validate(mesh, pants, topology).is_valid()); }
+};
 
 } // namespace
 
@@ -180,4 +201,66 @@ TEST_CASE("CLI: pants --json and --write-pants", "[cli][pants]")
   CHECK(sphere.out.empty());
   CHECK(run_cli("pants --criterion bogus '" + data("eight.off") + "'").exit_code == 2);
   CHECK(run_cli("pants --write-pants /nonexistent/dir '" + data("eight.off") + "'").exit_code == 2);
+}
+
+TEST_CASE("validate names swapped neighbours", "[pants][validate]")
+{
+  Eight e;
+  Pants::Result r = e.pants;
+  // Two slots of one pants with different neighbours; if every pants sees a single
+  // neighbour, swap the lists of pants 0 and 1 instead.
+  bool swapped = false;
+  for(auto& p : r.pants)
+    for(int s = 0; s < 3 && !swapped; ++s)
+      for(int t = s + 1; t < 3 && !swapped; ++t)
+        if(p.neighbours[s] != p.neighbours[t]) { std::swap(p.neighbours[s], p.neighbours[t]); swapped = true; }
+  if(!swapped) {
+    REQUIRE(r.pants.size() >= 2);
+    REQUIRE(r.pants[0].neighbours != r.pants[1].neighbours);
+    std::swap(r.pants[0].neighbours, r.pants[1].neighbours);
+  }
+  const PI::Pants_validation v = Pants::validate(e.mesh, r, e.topology);
+  CHECK(names(v, "the neighbour across"));
+  // A cycle between two pants that only one of them lists: it bounds one slot instead of two.
+  Pants::Result once = e.pants;
+  bool dropped = false;
+  for(int k = 0; k < int(once.pants.size()) && !dropped; ++k)
+    for(int t = 0; t < 3 && !dropped; ++t) {
+      const int c = once.pants[k].boundaries[t], n = once.pants[k].neighbours[t];
+      if(n < 0 || n == k) continue;
+      for(int& b : once.pants[n].boundaries)
+        if(b == c && !dropped) { b = (c + 1) % int(once.cycles.size()); dropped = true; }
+    }
+  REQUIRE(dropped);
+  const PI::Pants_validation v1 = Pants::validate(e.mesh, once, e.topology);
+  CHECK(names(v1, "bounds 1 pants slots instead of 2"));
+  CHECK(names(v1, "back across"));
+}
+
+TEST_CASE("validate names a cycle that does not bound a disk inside the solid", "[pants][validate]")
+{
+  Eight e;
+  // A handle loop (a meridian of a handle: it bounds inside) replaced by a tunnel loop
+  // (around a hole: it bounds outside, and links the outward push-off of a meridian).
+  REQUIRE(!e.topology.tunnel_loops.empty());
+  REQUIRE(e.pants.refinements == e.topology.refinements);
+  Pants::Result r = e.pants;
+  auto handle = std::find_if(r.cycles.begin(), r.cycles.end(),
+                             [](const auto& c) { return c.kind == PI::Pants_cycle<Mesh>::HANDLE_LOOP; });
+  REQUIRE(handle != r.cycles.end());
+  CHECK(!names(Pants::validate(e.mesh, r, e.topology), "does not bound a disk inside"));
+  handle->vertices = e.topology.tunnel_loops[0].vertices;
+  handle->points = e.topology.tunnel_loops[0].points;
+  CHECK(names(Pants::validate(e.mesh, r, e.topology), "does not bound a disk inside the solid"));
+  // The same without a topology given: validate() computes one.
+  CHECK(names(Pants::validate(e.mesh, r), "does not bound a disk inside the solid"));
+}
+
+TEST_CASE("validate names a face missing from the pants", "[pants][validate]")
+{
+  Eight e;
+  Pants::Result r = e.pants;
+  r.pants[0].faces.pop_back();
+  const PI::Pants_validation v = Pants::validate(e.mesh, r, e.topology);
+  CHECK(names(v, "the pants do not cover every face"));
 }

@@ -257,7 +257,7 @@ public:
     using CGAL::parameters::get_parameter;
     if(num_faces(tm) == 0) throw Invalid_input_error("empty", "the mesh has no faces");
     const int max_refinements = std::max(0, int(option(np, internal_np::maximum_refinements, 2)));
-    Surface_topology_result<TriangleMesh> topo = topology_of(tm, get_parameter(np, internal_np::surface_topology));
+    Surface_topology_result<TriangleMesh> topo = internal::given_or_computed_topology(tm, get_parameter(np, internal_np::surface_topology));
     // Where a boundary is too coarse for its corners or a half has no room for its arcs, the
     // whole surface is subdivided at edge midpoints (the shape does not change, the input's
     // vertices keep their indices) and the construction starts again.
@@ -295,15 +295,6 @@ private:
             .symmetry_plane(option(np, internal_np::symmetry_plane, Cut_criterion_options().symmetry_plane))
             .criterion_strength(option(np, internal_np::criterion_strength, 1.0)));
     return pants_layout(tm, pants);
-  }
-
-  template <class Given>
-  static Surface_topology_result<TriangleMesh> topology_of(const TriangleMesh& tm, const Given& given)
-  {
-    if constexpr(std::is_same<Given, CGAL::internal_np::Param_not_found>::value)
-      return Surface_topology<TriangleMesh>()(tm, parameters::compute_tunnel_loops(false));
-    else
-      return given;
   }
 
   /// A Surface_mesh copy with compact indices (the pieces rely on index order).

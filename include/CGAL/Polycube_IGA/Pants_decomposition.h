@@ -26,6 +26,8 @@
 #include <CGAL/Polycube_IGA/Errors.h>
 #include <CGAL/Polycube_IGA/Surface_topology.h>
 #include <CGAL/Polycube_IGA/parameters.h>
+#include <CGAL/Polycube_IGA/internal/linking_number.h>
+#include <CGAL/Polycube_IGA/internal/loop_push_off.h>
 #include <CGAL/Polycube_IGA/internal/mesh_graph.h>
 #include <CGAL/Polycube_IGA/internal/mesh_refinement.h>
 #include <CGAL/Polycube_IGA/internal/min_cut.h>
@@ -214,7 +216,7 @@ public:
     const int max_refinements = std::max(0, int(option(np, internal_np::maximum_refinements, 4)));
 
     auto given = get_parameter(np, internal_np::surface_topology);
-    Surface_topology_result<TriangleMesh> topology = topology_of(tm, given);
+    Surface_topology_result<TriangleMesh> topology = internal::given_or_computed_topology(tm, given);
     const long chi = topology.euler_characteristic;
     if(chi >= 0)
       throw Unsupported_topology_error("no_pants_decomposition",
@@ -248,9 +250,27 @@ public:
     return result;
   }
 
-  /// Checks every invariant: counts, each pants connected with genus 0 and 3 boundary
-  /// loops, cycles simple and pairwise disjoint, every face in exactly one pants.
-  static Pants_validation validate(const TriangleMesh& tm, const Result& r)
+  /// Checks every invariant: counts; each pants connected with genus 0 and 3 boundary
+  /// loops; cycles simple and pairwise disjoint; every face in exactly one pants; neighbours
+  /// consistent (`neighbours[t]` is the pants across `boundaries[t]`, -1 exactly across the
+  /// input boundary loops, and that pants lists this one back on the same cycle; every handle
+  /// or cut cycle bounds two pants slots, every input boundary loop one); and, for a closed
+  /// input, that every handle and cut cycle bounds a disk inside the solid: its linking
+  /// number with the outward push-off of every loop of a homology basis is 0 (Alexander
+  /// duality, as Surface_topology classifies handle loops). That check needs a homology
+  /// basis of `tm`: this overload computes the topology when the input is closed.
+  static Pants_validation validate(const TriangleMesh& tm, const Result& r) { return check(tm, r, nullptr); }
+
+  /// The same, with the topology of `tm` computed before (e.g. the `surface_topology`
+  /// given to the decomposition): nothing is recomputed.
+  static Pants_validation validate(const TriangleMesh& tm, const Result& r,
+                                   const Surface_topology_result<TriangleMesh>& topology)
+  {
+    return check(tm, r, &topology);
+  }
+
+private:
+  static Pants_validation check(const TriangleMesh& tm, const Result& r, const Surface_topology_result<TriangleMesh>* topology)
   {
     Pants_validation v;
     const TriangleMesh& m = r.mesh(tm);
@@ -278,7 +298,10 @@ public:
     for(std::size_t k = 0; k < r.pants.size(); ++k)
       for(face_descriptor f : r.pants[k].faces)
         if(!face_owner.emplace(f, int(k)).second) v.problems.push_back("a face lies in two pants");
-    if(face_owner.size() != num_faces(m)) v.problems.push_back("the pants do not cover every face");
+    if(face_owner.size() != num_faces(m))
+      v.problems.push_back("the pants do not cover every face (" + std::to_string(face_owner.size()) + " of " +
+                           std::to_string(num_faces(m)) + " faces lie in a pants)");
+    check_neighbours(m, r, face_owner, v);
     for(std::size_t k = 0; k < r.pants.size(); ++k) {
       CGAL::Surface_mesh<typename boost::property_traits<
         typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::const_type>::value_type> sub;
@@ -314,17 +337,148 @@ public:
       if(borders != 3) v.problems.push_back(name + " has " + std::to_string(borders) + " boundary loops instead of 3");
       if(chi != -1) v.problems.push_back(name + " has Euler characteristic " + std::to_string(chi) + " instead of -1 (genus 0, 3 boundaries)");
     }
+    check_cycles_bound_inside(tm, r, topology, v);
     return v;
   }
 
-private:
-  template <class Given>
-  static Surface_topology_result<TriangleMesh> topology_of(const TriangleMesh& tm, const Given& given)
+  static std::string cycle_name(const Result& r, int c)
   {
-    if constexpr(std::is_same<Given, CGAL::internal_np::Param_not_found>::value)
-      return Surface_topology<TriangleMesh>()(tm, parameters::compute_tunnel_loops(false));
-    else
-      return given;
+    return std::string(Pants_cycle<TriangleMesh>::kind_name(r.cycles[std::size_t(c)].kind)) + " cycle " + std::to_string(c);
+  }
+
+  // Neighbours against the faces on either side of every cycle.
+  static void check_neighbours(const TriangleMesh& m, const Result& r, const std::map<face_descriptor, int>& face_owner,
+                               Pants_validation& v)
+  {
+    const int nc = int(r.cycles.size()), np = int(r.pants.size());
+    const int unknown = -2, border = -1;
+    auto is_input = [&](int c) { return r.cycles[std::size_t(c)].kind == Pants_cycle<TriangleMesh>::INPUT_BOUNDARY; };
+    // across[c]: the pants left [0] and right [1] of cycle c (border: the mesh border;
+    // unknown: no edge of the cycle found, or only faces in no pants).
+    std::vector<std::array<int, 2>> across(std::size_t(nc), {{unknown, unknown}});
+    for(int c = 0; c < nc; ++c) {
+      const auto& vs = r.cycles[std::size_t(c)].vertices;
+      bool steady = true;
+      for(std::size_t i = 0; i < vs.size(); ++i) {
+        const auto hf = halfedge(vs[i], vs[(i + 1) % vs.size()], m);
+        if(!hf.second) continue;
+        for(int s = 0; s < 2; ++s) {
+          const auto h = s ? opposite(hf.first, m) : hf.first;
+          int p = border;
+          if(!is_border(h, m)) {
+            const auto it = face_owner.find(face(h, m));
+            if(it == face_owner.end()) continue;
+            p = it->second;
+          }
+          int& side = across[std::size_t(c)][std::size_t(s)];
+          if(side == unknown) side = p;
+          else steady = steady && side == p;
+        }
+      }
+      if(!steady) v.problems.push_back(cycle_name(r, c) + " does not have the same pants on each side along its whole length");
+      const bool on_border = across[std::size_t(c)][0] == border || across[std::size_t(c)][1] == border;
+      if(is_input(c) && !on_border) v.problems.push_back(cycle_name(r, c) + " does not run along the mesh border");
+      if(!is_input(c) && on_border) v.problems.push_back(cycle_name(r, c) + " runs along the mesh border");
+    }
+    std::vector<int> slots(std::size_t(nc), 0);
+    for(int k = 0; k < np; ++k)
+      for(int t = 0; t < 3; ++t) {
+        const int c = r.pants[std::size_t(k)].boundaries[std::size_t(t)], n = r.pants[std::size_t(k)].neighbours[std::size_t(t)];
+        const std::string slot = "pants " + std::to_string(k) + " slot " + std::to_string(t);
+        if(c < 0 || c >= nc) { v.problems.push_back(slot + " names no cycle (" + std::to_string(c) + ")"); continue; }
+        ++slots[std::size_t(c)];
+        if(is_input(c) != (n == -1))
+          v.problems.push_back(slot + ": neighbour " + std::to_string(n) + " across " + cycle_name(r, c) +
+                               " (-1 exactly across the input boundary loops)");
+        if(n < -1 || n >= np) { v.problems.push_back(slot + ": neighbour " + std::to_string(n) + " is no pants"); continue; }
+        const auto& a = across[std::size_t(c)];
+        if(a[0] != k && a[1] != k) {
+          if(a[0] != unknown && a[1] != unknown)
+            v.problems.push_back(slot + " lists " + cycle_name(r, c) + ", which does not run along the pants");
+          continue;
+        }
+        const int expected = a[0] == k ? a[1] : a[0];
+        if(expected != unknown && n != expected)
+          v.problems.push_back(slot + ": the neighbour across " + cycle_name(r, c) + " is " +
+                               (expected == border ? std::string("the mesh border (-1)") : "pants " + std::to_string(expected)) +
+                               ", not " + std::to_string(n));
+        if(n >= 0) {
+          bool back = false;
+          for(int u = 0; u < 3; ++u)
+            back = back || (r.pants[std::size_t(n)].boundaries[std::size_t(u)] == c &&
+                            r.pants[std::size_t(n)].neighbours[std::size_t(u)] == k && (n != k || u != t));
+          if(!back)
+            v.problems.push_back(slot + ": neighbour pants " + std::to_string(n) + " does not list pants " + std::to_string(k) +
+                                 " back across " + cycle_name(r, c));
+        }
+      }
+    for(int c = 0; c < nc; ++c) {
+      const int wanted = is_input(c) ? 1 : 2;
+      if(slots[std::size_t(c)] != wanted)
+        v.problems.push_back(cycle_name(r, c) + " bounds " + std::to_string(slots[std::size_t(c)]) + " pants slots instead of " +
+                             std::to_string(wanted));
+    }
+  }
+
+  // On a closed input: every handle and cut cycle links no outward push-off of a homology
+  // basis (so it bounds a disk inside the solid). Projected linking numbers (exact
+  // crossings, a grid per curve): about linear in the cycles' lengths per pair.
+  static void check_cycles_bound_inside(const TriangleMesh& tm, const Result& r,
+                                        const Surface_topology_result<TriangleMesh>* given, Pants_validation& v)
+  {
+    if(r.boundary_loops != 0 || r.genus <= 0) return;
+    bool any = false;
+    for(const auto& c : r.cycles) any = any || c.kind != Pants_cycle<TriangleMesh>::INPUT_BOUNDARY;
+    if(!any) return;
+    const std::string cannot = "cannot check that the cycles bound disks inside the solid: ";
+    Surface_topology_result<TriangleMesh> computed;
+    if(!given) {
+      try {
+        computed = internal::given_or_computed_topology(tm, CGAL::internal_np::Param_not_found());
+      } catch(const Error& e) {
+        v.problems.push_back(cannot + e.reason() + ": " + e.what());
+        return;
+      }
+      given = &computed;
+    }
+    const Surface_topology_result<TriangleMesh>& topo = *given;
+    if(topo.genus != r.genus || topo.homology_basis.size() != std::size_t(2 * r.genus)) {
+      v.problems.push_back(cannot + "the topology has genus " + std::to_string(topo.genus) + " and " +
+                           std::to_string(topo.homology_basis.size()) + " basis loops, the decomposition genus " +
+                           std::to_string(r.genus));
+      return;
+    }
+    const TriangleMesh& lm = topo.loop_mesh(tm);
+    const Graph g(lm, get(CGAL::vertex_point, lm));
+    internal::Loop_push_off<Graph> push(g);
+    const auto vim = CGAL::get_initialized_vertex_index_map(lm);
+    std::vector<std::vector<int>> basis;
+    for(const auto& loop : topo.homology_basis) {
+      basis.emplace_back();
+      for(auto x : loop.vertices) basis.back().push_back(int(get(vim, x)));
+    }
+    std::vector<const std::vector<int>*> refs;
+    for(const auto& b : basis) refs.push_back(&b);
+    Eigen::MatrixXd Lp, Lm;
+    if(!push.consistent_linking_matrices(refs, r.genus, Lp, Lm)) {
+      v.problems.push_back(cannot + "the homology basis has no consistent push-offs (a self-intersecting surface?)");
+      return;
+    }
+    std::vector<std::vector<Eigen::Vector3d>> outside;
+    for(const auto& b : basis) outside.push_back(push.pushed(b, +1));
+    for(std::size_t c = 0; c < r.cycles.size(); ++c) {
+      if(r.cycles[c].kind == Pants_cycle<TriangleMesh>::INPUT_BOUNDARY) continue;
+      std::vector<Eigen::Vector3d> points;
+      for(const auto& p : r.cycles[c].points) points.emplace_back(p[0], p[1], p[2]);
+      for(std::size_t i = 0; i < outside.size(); ++i) {
+        const int lk = internal::projected_linking_number(outside[i], points);
+        if(lk == 0) continue;
+        v.problems.push_back(cycle_name(r, int(c)) + " does not bound a disk inside the solid: it links the outward "
+                             "push-off of homology basis loop " + std::to_string(i) + " (linking number " +
+                             std::to_string(lk) + ")");
+        break;
+      }
+    }
   }
 
   // A side of a cycle, as a hole of the current region.

@@ -30,6 +30,7 @@
 #include <CGAL/Polycube_IGA/parameters.h>
 #include <CGAL/Polycube_IGA/internal/homology.h>
 #include <CGAL/Polycube_IGA/internal/linking_number.h>
+#include <CGAL/Polycube_IGA/internal/loop_push_off.h>
 #include <CGAL/Polycube_IGA/internal/mesh_graph.h>
 #include <CGAL/Polycube_IGA/internal/mesh_refinement.h>
 #include <CGAL/Polycube_IGA/internal/shortest_path_tree.h>
@@ -48,6 +49,7 @@
 #include <numeric>
 #include <set>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace CGAL {
@@ -320,44 +322,6 @@ private:
     }
   }
 
-  static std::vector<Eigen::Vector3d> push_off(const Graph& g, const std::vector<int>& loop,
-                                               const std::vector<Eigen::Vector3d>& normals,
-                                               const std::vector<double>& step, double side)
-  {
-    std::vector<Eigen::Vector3d> p;
-    p.reserve(loop.size());
-    for(int v : loop) p.push_back(g.position[v] + side * step[v] * normals[v]);
-    return p;
-  }
-
-  static std::vector<Eigen::Vector3d> positions(const Graph& g, const std::vector<int>& loop)
-  {
-    std::vector<Eigen::Vector3d> p;
-    for(int v : loop) p.push_back(g.position[v]);
-    return p;
-  }
-
-  // Linking matrices of the basis with its outward (+) and inward (-) push-offs.
-  static bool linking_matrices(const Graph& g, const std::vector<const Candidate*>& basis,
-                               const std::vector<Eigen::Vector3d>& normals, const std::vector<double>& step,
-                               double outward, Eigen::MatrixXd& Lp, Eigen::MatrixXd& Lm)
-  {
-    const int n = int(basis.size());
-    Lp.resize(n, n); Lm.resize(n, n);
-    std::vector<std::vector<Eigen::Vector3d>> on(n), plus(n), minus(n);
-    for(int i = 0; i < n; ++i) {
-      on[i] = positions(g, basis[i]->vertices);
-      plus[i] = push_off(g, basis[i]->vertices, normals, step, outward);
-      minus[i] = push_off(g, basis[i]->vertices, normals, step, -outward);
-    }
-    for(int i = 0; i < n; ++i)
-      for(int j = 0; j < n; ++j) {
-        Lp(i, j) = internal::projected_linking_number(on[i], plus[j]);
-        Lm(i, j) = internal::projected_linking_number(on[i], minus[j]);
-      }
-    return true;
-  }
-
   static bool search_loops(const Graph& g, const std::vector<double>& w, Result& result,
                            int number_of_roots, bool want_tunnels)
   {
@@ -376,12 +340,10 @@ private:
       throw Internal_error("loop_search_failed", "tree-cotree found " + std::to_string(H.dimension()) +
                                                  " generators for genus " + std::to_string(genus));
 
-    // Push-off directions for the linking numbers; loops avoid vertices that have none.
-    const double outward = g.capped_signed_volume() >= 0 ? 1.0 : -1.0;
-    std::vector<double> clearance;
-    const std::vector<Eigen::Vector3d> normals = g.vertex_push_directions(clearance);
+    // Push-offs for the linking numbers; loops avoid vertices that have no direction.
+    const internal::Loop_push_off<Graph> push(g);
     std::vector<char> unreliable(nv, 0);
-    for(int v = 0; v < nv; ++v) unreliable[v] = clearance[v] <= 0.01;
+    for(int v = 0; v < nv; ++v) unreliable[v] = !push.reliable(v);
 
     // Candidates from farthest-point-sampled roots.
     std::vector<Candidate> candidates;
@@ -397,12 +359,6 @@ private:
       internal::Shortest_path_tree t = internal::shortest_path_tree(g, far, w);
       for(int v = 0; v < nv; ++v) nearest[v] = std::min(nearest[v], t.distance[v]);
       loops_through_root(g, w, unreliable, H, t, keep, {}, candidates);
-    }
-
-    std::vector<double> step(nv, std::numeric_limits<double>::infinity());
-    for(int e = 0; e < g.number_of_edges(); ++e) {
-      const double l = g.length(e);
-      for(int v : g.edge_vertices[e]) step[v] = std::min(step[v], 0.05 * l);
     }
 
     // Later rounds add roots on the loops the previous round chose, where the shortest
@@ -422,7 +378,7 @@ private:
     for(int round = 0;; ++round) {
       std::stable_sort(candidates.begin(), candidates.end(),
                        [](const Candidate& a, const Candidate& b) { return a.length < b.length; });
-      sel = select(g, candidates, genus, want_tunnels, normals, step, outward);
+      sel = select(g, candidates, genus, want_tunnels, push);
       if(!sel.ok) return false;
       const bool tunnels_missing = want_tunnels && int(sel.tunnels.size()) < genus;
       const double total = total_length(sel);
@@ -477,7 +433,7 @@ private:
     for(std::size_t i = 0; i < sel.handles.size(); ++i)
       for(std::size_t j = 0; j < sel.tunnels.size(); ++j)
         result.handle_tunnel_linking[i][j] = internal::projected_linking_number(
-          positions(g, sel.handles[i]->vertices), push_off(g, sel.tunnels[j]->vertices, normals, step, -outward));
+          push.on_surface(sel.handles[i]->vertices), push.pushed(sel.tunnels[j]->vertices, -1));
     return true;
   }
 
@@ -487,8 +443,9 @@ private:
     std::vector<const Candidate*> basis, handles, tunnels;
   };
 
+  // `push` is a copy: its steps shrink here when the linking matrices need it.
   static Selection select(const Graph& g, const std::vector<Candidate>& candidates, int genus, bool want_tunnels,
-                          const std::vector<Eigen::Vector3d>& normals, std::vector<double> step, double outward)
+                          internal::Loop_push_off<Graph> push)
   {
     Selection s;
     const int d = 2 * genus;
@@ -497,18 +454,11 @@ private:
       if(!c.unreliable && basis_rank.insert(c.cls)) { s.basis.push_back(&c); if(basis_rank.rank() == d) break; }
     if(basis_rank.rank() != d) return s; // refine: loops avoiding unreliable vertices will exist
 
-    // Linking matrices. A push-off that crosses the surface elsewhere (a thin part) gives
-    // matrices of the wrong rank: shrink it and try again.
+    // Linking matrices (shrinking the push-offs where they cross a thin part).
     Eigen::MatrixXd Lp, Lm;
-    bool consistent = false;
-    for(int tries = 0; tries < 6 && !consistent; ++tries) {
-      consistent = linking_matrices(g, s.basis, normals, step, outward, Lp, Lm) &&
-                   Eigen::FullPivLU<Eigen::MatrixXd>(Lp).rank() == genus &&
-                   Eigen::FullPivLU<Eigen::MatrixXd>(Lm).rank() == genus &&
-                   Eigen::FullPivLU<Eigen::MatrixXd>(Lp - Lm).rank() == d;
-      if(!consistent) for(double& x : step) x *= 0.25;
-    }
-    if(!consistent)
+    std::vector<const std::vector<int>*> basis_loops;
+    for(const Candidate* c : s.basis) basis_loops.push_back(&c->vertices);
+    if(!push.consistent_linking_matrices(basis_loops, genus, Lp, Lm))
       throw Internal_error("handle_tunnel_classification_failed",
                            "linking numbers of the homology basis are inconsistent (is the surface "
                            "self-intersecting or are normals inconsistent?)");
@@ -564,6 +514,21 @@ Surface_topology_result<TriangleMesh> surface_topology(const TriangleMesh& tm,
 {
   return Surface_topology<TriangleMesh>()(tm, np);
 }
+
+namespace internal {
+
+/// The `surface_topology` named parameter of a later stage when it was given, else the
+/// topology computed now (genus, boundary loops, homology basis, handle loops; no tunnel loops).
+template <class TriangleMesh, class Given>
+Surface_topology_result<TriangleMesh> given_or_computed_topology(const TriangleMesh& tm, const Given& given)
+{
+  if constexpr(std::is_same<Given, CGAL::internal_np::Param_not_found>::value)
+    return Surface_topology<TriangleMesh>()(tm, parameters::compute_tunnel_loops(false));
+  else
+    return given;
+}
+
+} // namespace internal
 
 } // namespace Polycube_IGA
 } // namespace CGAL
