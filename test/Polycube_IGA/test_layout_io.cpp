@@ -8,6 +8,7 @@
 // atomicity when writing fails.
 
 #include "layout_fixtures.h"
+#include "vtu_text.h"
 
 #include <CGAL/Polycube_IGA/IO/layout_json.h>
 #include <CGAL/Polycube_IGA/IO/layout_vtk.h>
@@ -30,20 +31,6 @@ namespace PI = CGAL::Polycube_IGA;
 
 namespace {
 
-std::string file_text(const std::string& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-bool exists(const std::string& path)
-{
-  struct stat st;
-  return ::stat(path.c_str(), &st) == 0;
-}
-
 std::size_t occurrences(const std::string& text, const std::string& what)
 {
   std::size_t n = 0;
@@ -58,57 +45,6 @@ Point bend(double x, double y, double z)
 }
 
 // --- VTU ---------------------------------------------------------------------------------
-
-/// Every start tag has its end tag, properly nested; one root element `VTKFile`.
-bool xml_tags_balance(const std::string& xml)
-{
-  std::vector<std::string> open;
-  std::size_t roots = 0;
-  for(std::size_t at = xml.find('<'); at != std::string::npos; at = xml.find('<', at + 1)) {
-    const std::size_t end = xml.find('>', at);
-    if(end == std::string::npos) return false;
-    const std::string tag = xml.substr(at + 1, end - at - 1);
-    if(tag.empty()) return false;
-    if(tag[0] == '?') continue; // declaration
-    if(tag[0] == '/') {
-      if(open.empty() || open.back() != tag.substr(1)) return false;
-      open.pop_back();
-      continue;
-    }
-    const std::string name = tag.substr(0, tag.find_first_of(" \n/"));
-    if(open.empty()) {
-      ++roots;
-      if(name != "VTKFile") return false;
-    }
-    if(tag.back() != '/') open.push_back(name);
-  }
-  return open.empty() && roots == 1;
-}
-
-std::string attribute(const std::string& xml, const std::string& element, const std::string& name)
-{
-  const std::size_t at = xml.find("<" + element + " ");
-  if(at == std::string::npos) return "";
-  const std::size_t close = xml.find('>', at);
-  const std::size_t a = xml.find(" " + name + "=\"", at);
-  if(a == std::string::npos || a > close) return "";
-  const std::size_t begin = a + name.size() + 3;
-  return xml.substr(begin, xml.find('"', begin) - begin);
-}
-
-/// Text of the DataArray named `name` (or of the first DataArray after `after`).
-std::string data_array(const std::string& xml, const std::string& name, const std::string& after = "")
-{
-  std::size_t at = after.empty() ? xml.find("Name=\"" + name + "\"") : xml.find("<DataArray", xml.find(after));
-  if(at == std::string::npos) return "";
-  const std::size_t begin = xml.find('>', at) + 1;
-  return xml.substr(begin, xml.find("</DataArray>", begin) - begin);
-}
-
-std::vector<long> integers(const std::string& xml, const std::string& name)
-{
-  return PI::internal::parse_integers(data_array(xml, name), name);
-}
 
 std::vector<int> expected_patch_of_face(const Layout& L)
 {

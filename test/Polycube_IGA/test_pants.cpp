@@ -6,11 +6,13 @@
 // connected genus-0 surface with 3 boundaries, cycles simple and pairwise disjoint,
 // neighbours consistent, and every cut cycle of a closed solid bounding inside it (its
 // Gauss linking number with every outward push-off of a homology basis is 0). validate()
-// names each broken invariant on corrupted decompositions.
+// names each broken invariant on corrupted decompositions; the VTK writer's file reads back.
 
 #include "test_geometry.h"
 #include "test_support.h"
+#include "vtu_text.h"
 
+#include <CGAL/Polycube_IGA/IO/pants_vtk.h>
 #include <CGAL/Polycube_IGA/Pants_decomposition.h>
 
 #include <algorithm>
@@ -263,4 +265,69 @@ TEST_CASE("validate names a face missing from the pants", "[pants][validate]")
   r.pants[0].faces.pop_back();
   const PI::Pants_validation v = Pants::validate(e.mesh, r, e.topology);
   CHECK(names(v, "the pants do not cover every face"));
+}
+
+TEST_CASE("write_pants_vtu: the file reads back", "[pants][vtk]")
+{
+  Eight e;
+  const Mesh& m = e.pants.mesh(e.mesh);
+  const std::string path = temp_path("pants_eight.vtu");
+  PI::IO::write_pants_vtu(path, e.mesh, e.pants);
+  const std::string xml = file_text(path);
+  REQUIRE(xml_tags_balance(xml));
+  CHECK(attribute(xml, "VTKFile", "type") == "UnstructuredGrid");
+  const std::size_t nf = num_faces(m), nc = e.pants.cycles.size();
+  CHECK(attribute(xml, "Piece", "NumberOfPoints") == std::to_string(num_vertices(m)));
+  CHECK(attribute(xml, "Piece", "NumberOfCells") == std::to_string(nf + nc));
+  const std::vector<long> pants = integers(xml, "pants"), cycle = integers(xml, "cycle"), kind = integers(xml, "kind"),
+                          types = integers(xml, "types"), offsets = integers(xml, "offsets");
+  REQUIRE(pants.size() == nf + nc);
+  REQUIRE(cycle.size() == nf + nc);
+  REQUIRE(kind.size() == nf + nc);
+  REQUIRE(types.size() == nf + nc);
+  // Faces: triangles whose pants ids cover 0..P-1; cycles: closed poly lines with their ids and kinds.
+  std::set<long> ids(pants.begin(), pants.begin() + long(nf));
+  CHECK(ids.size() == e.pants.pants.size());
+  CHECK(*ids.begin() == 0);
+  CHECK(*ids.rbegin() == long(e.pants.pants.size()) - 1);
+  for(std::size_t f = 0; f < nf; ++f) CHECK((types[f] == 5 && cycle[f] == -1 && kind[f] == -1));
+  for(std::size_t c = 0; c < nc; ++c) {
+    const std::size_t cell = nf + c;
+    CHECK(types[cell] == 4);
+    CHECK(pants[cell] == -1);
+    CHECK(cycle[cell] == long(c));
+    CHECK(kind[cell] == long(e.pants.cycles[c].kind));
+    CHECK(offsets[cell] - offsets[cell - 1] == long(e.pants.cycles[c].vertices.size()) + 1);
+  }
+  // Unwritable: the package's error, and no file (nor temporary) left behind.
+  const std::string bad = temp_path("no_such_dir") + "/x/pants.vtu";
+  try {
+    PI::IO::write_pants_vtu(bad, e.mesh, e.pants);
+    FAIL("no error");
+  } catch(const PI::Invalid_input_error& err) {
+    CHECK(err.reason() == "unwritable_output");
+  }
+  CHECK(!exists(bad));
+}
+
+TEST_CASE("CLI: pants --vtk", "[cli][pants][vtk]")
+{
+  const std::string path = temp_path("cli_pants_3holes.vtu");
+  std::remove(path.c_str());
+  const Cli_result r = run_cli("pants --vtk '" + path + "' '" + data("3holes.obj") + "'");
+  REQUIRE(r.exit_code == 0);
+  const std::string xml = file_text(path);
+  REQUIRE(xml_tags_balance(xml));
+  const std::vector<long> pants = integers(xml, "pants"), kind = integers(xml, "kind");
+  CHECK(*std::max_element(pants.begin(), pants.end()) == 3); // genus 3: 4 pants
+  CHECK(std::count(kind.begin(), kind.end(), long(PI::Pants_cycle<Mesh>::HANDLE_LOOP)) == 3);
+  CHECK(std::count(kind.begin(), kind.end(), long(PI::Pants_cycle<Mesh>::CUT)) == 3);
+  // An unwritable path: exit 2 with the package's error, no file, nothing on stdout.
+  const std::string bad = temp_path("no_such_dir") + "/pants.vtu";
+  const Cli_result b = run_cli("pants --json --vtk '" + bad + "' '" + data("eight.off") + "'");
+  CHECK(b.exit_code == 2);
+  CHECK(b.err.rfind("error: unwritable_output: ", 0) == 0);
+  CHECK(b.out.empty());
+  CHECK(!exists(bad));
+  CHECK(!exists(bad + ".tmp-polycube-iga"));
 }

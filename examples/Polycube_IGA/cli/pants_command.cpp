@@ -2,13 +2,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
 // `polycube_iga pants MESH --json [--criterion length|minima|symmetry]
-//                   [--symmetry-plane a,b,c,d] [--write-pants DIR]`:
+//                   [--symmetry-plane a,b,c,d] [--write-pants DIR] [--vtk OUT.vtu]`:
 // the pants decomposition (reference §2.2.1). chi >= 0 inputs: exit 3, no_pants_decomposition.
+// Output files are checked for a directory before the work and written atomically.
 
 #include "arguments.h"
 #include "command_registry.h"
 #include "mesh_input.h"
 
+#include <CGAL/Polycube_IGA/IO/pants_vtk.h>
 #include <CGAL/Polycube_IGA/Pants_decomposition.h>
 #include <CGAL/Polycube_IGA/internal/atomic_file.h>
 #include <CGAL/Polycube_IGA/internal/json_writer.h>
@@ -45,25 +47,34 @@ void write_off_atomically(const std::string& path, const Mesh& m)
 int run_pants(const Arguments& args)
 {
   Parsed_arguments a(args, {"--json", "--merge-duplicates", "--drop-isolated", "--no-self-intersection-test"},
-                     {"--criterion", "--symmetry-plane", "--write-pants"});
+                     {"--criterion", "--symmetry-plane", "--write-pants", "--vtk"});
   a.expect_positional(1, "one mesh file: polycube_iga pants MESH --json");
   PI::Cut_criterion criterion = PI::parse_cut_criterion(a.get("--criterion", "length"));
   std::array<double, 4> plane{0, 0, 1, 0};
   if(a.has("--symmetry-plane")) plane = parse_plane(a.get("--symmetry-plane"));
   else if(criterion == PI::Cut_criterion::SYMMETRY)
     throw PI::Invalid_input_error("bad_arguments", "--criterion symmetry needs --symmetry-plane a,b,c,d");
-  const std::string out_dir = a.get("--write-pants");
-  if(!out_dir.empty()) {
+  auto require_directory = [](const std::string& option, const std::string& dir) {
     struct stat st;
-    if(stat(out_dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
-      throw PI::Invalid_input_error("unwritable_output", "--write-pants: '" + out_dir + "' is not a directory");
+    if(stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
+      throw PI::Invalid_input_error("unwritable_output", option + ": '" + dir + "' is not a directory");
+  };
+  const std::string out_dir = a.get("--write-pants");
+  if(!out_dir.empty()) require_directory("--write-pants", out_dir);
+  const std::string vtk = a.get("--vtk");
+  if(a.has("--vtk")) {
+    if(vtk.empty() || vtk.back() == '/') throw PI::Invalid_input_error("bad_arguments", "--vtk expects a file name OUT.vtu");
+    const std::size_t slash = vtk.rfind('/');
+    require_directory("--vtk", slash == std::string::npos ? "." : (slash == 0 ? "/" : vtk.substr(0, slash)));
   }
 
   Input_mesh in = read_input_mesh(a.positional()[0], a);
   in.report.require_valid();
+  // The topology once, for the decomposition and for validate().
+  const auto topology = PI::Surface_topology<Mesh>()(in.mesh, PI::parameters::compute_tunnel_loops(false));
   const auto result = PI::Pants_decomposition<Mesh>()(
-    in.mesh, PI::parameters::cut_criterion(criterion).symmetry_plane(plane));
-  const PI::Pants_validation check = PI::Pants_decomposition<Mesh>::validate(in.mesh, result);
+    in.mesh, PI::parameters::cut_criterion(criterion).symmetry_plane(plane).surface_topology(topology));
+  const PI::Pants_validation check = PI::Pants_decomposition<Mesh>::validate(in.mesh, result, topology);
   if(!check.is_valid())
     throw PI::Internal_error("pants_decomposition_invalid", "the decomposition violates an invariant: " + check.problems.front());
   const Mesh& m = result.mesh(in.mesh);
@@ -77,6 +88,7 @@ int run_pants(const Arguments& args)
     }
     if(result.refinements) write_off_atomically(out_dir + "/refined_mesh.off", m);
   }
+  if(a.has("--vtk")) PI::IO::write_pants_vtu(vtk, in.mesh, result);
 
   // Input vertices by their index in the input file; vertices added by refinement by their
   // index in refined_mesh.off (whose first vertices are the input mesh's).
@@ -127,7 +139,7 @@ int run_pants(const Arguments& args)
 Register_command pants_command("pants", {
   "cut the surface into pants patches (genus 0, 3 boundaries) along handle loops and cycles",
   "usage: polycube_iga pants MESH [--json] [--criterion length|minima|symmetry]\n"
-  "                         [--symmetry-plane a,b,c,d] [--write-pants DIR]\n"
+  "                         [--symmetry-plane a,b,c,d] [--write-pants DIR] [--vtk OUT.vtu]\n"
   "  --json              {genus, boundary_loops, refinements, pants: [{faces,\n"
   "                      boundaries: [cycle ids], neighbours: [pants ids, -1 across an input\n"
   "                      boundary]}], cycles: [{kind, vertices, points, length}]}; cycles list the\n"
@@ -137,7 +149,12 @@ Register_command pants_command("pants", {
   "  --criterion         length (default): shortest cycles; minima: through concave regions\n"
   "                      (minimum curvature); symmetry: near --symmetry-plane\n"
   "  --write-pants DIR   one OFF per pants (DIR/pants_K.off), plus refined_mesh.off if refined\n"
-  "  exit 3 with no_pants_decomposition for a sphere, disk, cylinder or torus (chi >= 0)\n",
+  "  --vtk OUT.vtu       VTK XML unstructured grid for ParaView: the (refined) mesh with cell\n"
+  "                      data pants (the pants of each face), then the cycles as closed poly\n"
+  "                      lines with cell data cycle (its id) and kind (0 input boundary,\n"
+  "                      1 handle, 2 cut); -1 where a field does not apply\n"
+  "  exit 3 with no_pants_decomposition for a sphere, disk, cylinder or torus (chi >= 0);\n"
+  "  exit 2 with unwritable_output when an output cannot be written (no file is left)\n",
   run_pants});
 
 } // namespace
