@@ -93,7 +93,7 @@ void run_case(const Options& opt, const Case& c)
   double t_validate = 0;
   if(!failed) {
     PI::Pants_validation v;
-    t_validate = best_time(1, [&] { v = PI::Pants_decomposition<Mesh>::validate(mesh, pants); });
+    t_validate = best_time(1, [&] { v = PI::Pants_decomposition<Mesh>::validate(mesh, pants, topo); });
     valid = v.is_valid();
     for(const std::string& p : v.problems) std::cerr << "pants: " << name << ": invalid: " << p << "\n";
   }

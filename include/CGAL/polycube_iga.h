@@ -50,7 +50,8 @@ struct Trivariate_model
 /// \ingroup PkgPolycubeIGARef
 /// Runs the whole chain. `progress`, when set, is told the name of each stage as it starts.
 /// Named parameters: those of Surface_topology, Pants_decomposition, Cuboid_decomposition
-/// and layout_volume() (grid_resolution, spline_degree, number_of_spans, ...).
+/// and layout_volume() (grid_resolution, spline_degree, number_of_spans, boundary_layer
+/// (default 0.25 here; 0 for one volume patch per cuboid), ...).
 /// Throws the stages' errors; an invalid layout becomes Internal_error("invalid_layout").
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
 auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values(),
@@ -77,7 +78,13 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   stage("layout validation", [&] { model.layout_validation = model.layout.validate(); });
   if(!model.layout_validation.is_valid())
     throw Internal_error("invalid_layout", "the polycube layout violates an invariant: " + model.layout_validation.problems.front());
-  stage("volume construction", [&] { model.volume = layout_volume(model.layout, np); });
+  // A boundary layer by default (Layout_padding.h): without it, cuboid edges on a smooth
+  // surface have det J -> 0.
+  Layout_volume_options volume_defaults;
+  volume_defaults.boundary_layer = 0.25;
+  // Long tubes (pants arms) as chains of cube-like cuboids (Layout_chains.h).
+  volume_defaults.maximum_cuboid_aspect = 2.;
+  stage("volume construction", [&] { model.volume = layout_volume(model.layout, np, volume_defaults); });
   for(std::size_t p = 0; p < model.volume.samples.flipped_triangles.size(); ++p)
     if(model.volume.samples.flipped_triangles[p] > 0)
       model.warnings.push_back("patch " + std::to_string(p) + ": " + std::to_string(model.volume.samples.flipped_triangles[p]) +

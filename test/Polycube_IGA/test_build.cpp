@@ -38,8 +38,22 @@ TEST_CASE("build turns every surface class into a multipatch volume", "[build]")
     const auto model = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).number_of_spans(2));
     REQUIRE(model.layout_validation.is_valid());
     const auto& V = model.volume;
-    CHECK(V.volume.number_of_patches() == model.layout.cuboids.size());
-    CHECK(V.volume.interfaces().size() == model.layout.interfaces().size());
+    // Cores (pieces of cuboids, long tubes being chains) and one slab per piece of surface
+    // patch (the default boundary layer): every cuboid and surface patch is covered.
+    REQUIRE(V.core_of.size() == V.volume.number_of_patches());
+    REQUIRE(V.slab_of.size() == V.volume.number_of_patches());
+    std::vector<int> cores(model.layout.cuboids.size(), 0), slabs(model.layout.patches.size(), 0);
+    std::size_t slab_count = 0;
+    for(std::size_t p = 0; p < V.core_of.size(); ++p) {
+      CHECK((V.core_of[p] >= 0) != (V.slab_of[p] >= 0));
+      if(V.core_of[p] >= 0) ++cores[std::size_t(V.core_of[p])];
+      if(V.slab_of[p] >= 0) { ++slabs[std::size_t(V.slab_of[p])]; ++slab_count; }
+    }
+    for(int c : cores) CHECK(c >= 1);
+    for(std::size_t p = 0; p < slabs.size(); ++p) CHECK((slabs[p] >= 1) == (model.layout.patches[p].kind == PI::Polycube_layout<Point>::SURFACE));
+    // Every side is glued or a boundary; on a closed surface the boundaries are the slabs' tops.
+    CHECK(2 * V.volume.interfaces().size() + V.volume.boundaries().size() == 6 * V.volume.number_of_patches());
+    if(model.layout.boundary_loops == 0) CHECK(V.volume.boundaries().size() == slab_count);
     CHECK(V.quality.interfaces.conforming);
     // Boundary fidelity: the default target is 2% of the bounding-box diagonal.
     CHECK(V.distance.relative < 0.03);
@@ -73,7 +87,9 @@ TEST_CASE("build CLI writes nothing invalid and always reports", "[build][cli]")
 TEST_CASE("build CLI output re-reads as the same multipatch volume", "[build][cli]")
 {
   const std::string xml = temp_path("torus.xml"), vtu = temp_path("torus.vtu");
-  const Cli_result r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --vtu '" + vtu + "' --grid 8 --allow-invalid --quiet");
+  // Without the boundary layer: one patch per cuboid of the ring.
+  const Cli_result r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --vtu '" + vtu +
+                               "' --grid 8 --boundary-layer 0 --allow-invalid --quiet");
   REQUIRE(r.exit_code == 0);
   const PI::Multipatch_volume mp = PI::IO::read_gismo_xml(xml);
   CHECK(mp.number_of_patches() >= 3);
@@ -92,6 +108,9 @@ TEST_CASE("build CLI rejects bad input and bad options without writing", "[build
   r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --grid 1");
   CHECK(r.exit_code == 2);
   CHECK(r.err.find("bad_arguments") != std::string::npos);
+  r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --boundary-layer 0.7");
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("--boundary-layer") != std::string::npos);
   r = run_cli("build '" + data("torus.obj") + "'");
   CHECK(r.exit_code == 2);
   CHECK(!exists(xml));
@@ -115,7 +134,30 @@ TEST_CASE("build CLI writes a certified torus volume without --allow-invalid", "
   const std::string xml = temp_path("valid_torus.xml"), report = temp_path("valid_torus.json");
   const Cli_result r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --report '" + report + "' --quiet");
   REQUIRE(r.exit_code == 0);
-  CHECK(slurp(report).find("\"valid\":true") != std::string::npos);
+  const std::string rep = slurp(report);
+  CHECK(rep.find("\"valid\":true") != std::string::npos);
+  CHECK(rep.find("\"boundary_layer\":true") != std::string::npos);
   const PI::Multipatch_volume mp = PI::IO::read_gismo_xml(xml);
-  CHECK(mp.interfaces().size() == mp.number_of_patches());
+  // A closed solid with a boundary layer: the cores lie inside, every slab has exactly one
+  // side on the surface, so the boundary sides are the slabs' tops.
+  const std::size_t at = rep.find("\"cuboids\":");
+  REQUIRE(at != std::string::npos);
+  const std::size_t cuboids = std::size_t(std::stoul(rep.substr(at + 10)));
+  CHECK(mp.boundaries().size() == mp.number_of_patches() - cuboids);
+  CHECK(2 * mp.interfaces().size() + mp.boundaries().size() == 6 * mp.number_of_patches());
+}
+
+TEST_CASE("the boundary layer raises the torus' minimum scaled Jacobian", "[build][boundary_layer]")
+{
+  // Without the layer, cuboid edges on the smooth surface have det J -> 0 (Layout_padding.h).
+  const Mesh m = load(data("torus.obj"));
+  const auto with = PI::build_trivariate_model(m);
+  const auto without = PI::build_trivariate_model(m, PI::parameters::boundary_layer(0.));
+  REQUIRE(with.is_valid());
+  CHECK(without.volume.volume.number_of_patches() == without.layout.cuboids.size());
+  CHECK(with.volume.volume.number_of_patches() == with.layout.cuboids.size() + with.layout.number_of_surface_patches());
+  CHECK(with.volume.quality.overall_sampled.min_scaled_jacobian >
+        without.volume.quality.overall_sampled.min_scaled_jacobian + 0.1);
+  // The slabs' tops are fitted to the same grids: the same distance to the mesh.
+  CHECK(with.volume.distance.relative == Approx(without.volume.distance.relative).epsilon(0.02));
 }

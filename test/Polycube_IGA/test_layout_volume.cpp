@@ -268,6 +268,132 @@ TEST_CASE("layout volume of undeformed box chains is valid and conforming and fi
   }
 }
 
+TEST_CASE("a boundary layer tiles the chain with cores and one slab per surface patch", "[layout_volume][boundary_layer]")
+{
+  struct Case { int k; bool open; bool deformed; };
+  for(const Case& c : {Case{1, false, false}, Case{3, false, false}, Case{2, true, false}, Case{3, false, true}}) {
+    INFO("k " << c.k << " open " << c.open << " deformed " << c.deformed);
+    const Layout L = box_chain_layout(c.k, 3, c.open, c.deformed ? bend_and_twist(c.k) : std::function<Point(double, double, double)>());
+    PI::Layout_volume_options o = small_options(8);
+    o.boundary_layer = 0.25;
+    const PI::Layout_volume_result r = PI::layout_volume(L, o);
+    const PI::Multipatch_volume& mp = r.volume;
+    const std::size_t C = L.cuboids.size(), S = L.number_of_surface_patches();
+    REQUIRE(mp.number_of_patches() == C + S);
+    REQUIRE(r.core_of.size() == C + S);
+    REQUIRE(r.slab_of.size() == C + S);
+    std::vector<int> slabs(L.patches.size(), 0);
+    for(std::size_t p = 0; p < C + S; ++p) {
+      CHECK((r.core_of[p] >= 0) != (r.slab_of[p] >= 0));
+      if(p < C) CHECK(r.core_of[p] == long(p));
+      if(r.slab_of[p] >= 0) {
+        CHECK(L.patches[std::size_t(r.slab_of[p])].kind == Layout::SURFACE);
+        ++slabs[std::size_t(r.slab_of[p])];
+      }
+    }
+    for(std::size_t p = 0; p < L.patches.size(); ++p) CHECK(slabs[p] == (L.patches[p].kind == Layout::SURFACE ? 1 : 0));
+    // Interfaces: the layout's (between cores), core-slab, and slab-slab across every arc
+    // with two surface patches beside it.
+    std::vector<int> surface_sides(L.arcs.size(), 0);
+    for(const auto& pa : L.patches)
+      if(pa.kind == Layout::SURFACE)
+        for(std::size_t a : pa.arcs) ++surface_sides[a];
+    const std::size_t shared_arcs = std::size_t(std::count(surface_sides.begin(), surface_sides.end(), 2));
+    CHECK(mp.interfaces().size() == L.interfaces().size() + S + shared_arcs);
+    check_against_compute_topology(mp);
+    REQUIRE(r.quality_evaluated);
+    CHECK(r.quality.interfaces.conforming);
+    check_interface_nets_identical(mp);
+    // Cores and slabs tile the solid: their enclosed volumes add up to the chain's (exactly
+    // for flat sides; bent grids are triangulated differently by the two cells of a face).
+    const PI::Layout_volume_result plain = PI::layout_volume(L, small_options(8));
+    double padded_total = 0., plain_total = 0.;
+    for(double v : r.enclosed_volume) padded_total += std::abs(v);
+    for(double v : plain.enclosed_volume) plain_total += std::abs(v);
+    CHECK(padded_total == Approx(plain_total).epsilon(c.deformed ? 1e-3 : 1e-9));
+    for(std::size_t p = 0; p < mp.number_of_patches(); ++p) {
+      INFO("patch " << p << " lb " << r.quality.certified[p].lower_bound << " found " << r.quality.certified[p].smallest_value_found << " minSJ " << r.quality.sampled[p].min_scaled_jacobian);
+      CHECK(r.quality.certified[p].certified_positive);
+    }
+    // The slabs' tops are the surface patches' own fits.
+    CHECK(r.distance.relative == Approx(plain.distance.relative).epsilon(1e-3).margin(1e-9));
+  }
+}
+
+TEST_CASE("a long tube becomes a chain of cube-like cuboids cut at its arc-length fractions", "[layout_volume][chains]")
+{
+  // One 4 x 1 x 1 box: a tube along x, 4 times as long as wide.
+  const Layout L = box_chain_layout(1, 4, false, [](double x, double y, double z) { return Point(4. * x, y, z); });
+  const PI::Patch_grids G = PI::sample_layout_patches(L, small_options(8).sampling);
+  const auto C = PI::split_long_cuboids(L, G, small_options(8).sampling);
+  REQUIRE(C.pieces == std::vector<int>{4});
+  const Layout& M = C.layout;
+  CHECK(M.cuboids.size() == 4);
+  CHECK(M.nodes.size() == 8 + 4 * 3);
+  CHECK(M.patches.size() == 4 * 4 + 2 + 3);    // side pieces, ends, cross-sections
+  CHECK(M.arcs.size() == 4 * 4 + 8 + 4 * 3);   // long pieces, end arcs, cross arcs
+  CHECK(C.cuboid_of == std::vector<long>(4, 0));
+  REQUIRE(C.samples.grids.size() == M.patches.size());
+  // Cross-section l lies in the plane x = l (arc length fractions of straight arcs) and the
+  // side pieces between x = m and m + 1.
+  int sections = 0;
+  for(std::size_t p = 0; p < M.patches.size(); ++p) {
+    const auto& g = C.samples.grids[p];
+    if(C.patch_of[p] < 0) {
+      ++sections;
+      CHECK(M.patches[p].kind == Layout::INTERFACE);
+      const double x = g(0, 0).x();
+      CHECK(std::abs(x - std::round(x)) < 1e-12); // a node: an arc sample
+      // The lattice's map to the square is affine (symmetric stencils), so the whole
+      // section is flat.
+      for(const auto& q : g.points) CHECK(q.x() == Approx(x).margin(1e-9));
+    } else if(M.patches[p].kind == Layout::SURFACE && L.patches[std::size_t(C.patch_of[p])].kind == Layout::SURFACE) {
+      double lo = 1e9, hi = -1e9;
+      for(const auto& q : g.points) { lo = std::min(lo, q.x()); hi = std::max(hi, q.x()); }
+      CHECK(hi - lo <= 1. + 1e-9);
+    }
+  }
+  CHECK(sections == 3);
+  // The chain's volume: valid, conforming, and it fills the box.
+  PI::Layout_volume_options o = small_options(8);
+  o.maximum_cuboid_aspect = 2.;
+  const PI::Layout_volume_result r = PI::layout_volume(L, o);
+  CHECK(r.volume.number_of_patches() == 4);
+  CHECK(r.volume.interfaces().size() == 3);
+  CHECK(r.core_of == std::vector<long>(4, 0));
+  check_against_compute_topology(r.volume);
+  CHECK(r.quality.interfaces.conforming);
+  check_interface_nets_identical(r.volume);
+  double total = 0.;
+  for(double v : r.enclosed_volume) total += v;
+  CHECK(total == Approx(4.).epsilon(1e-9));
+  for(const auto& b : r.quality.certified) CHECK(b.certified_positive);
+  // With the boundary layer: a core per piece and a slab per side piece and end.
+  o.boundary_layer = 0.25;
+  const PI::Layout_volume_result rl = PI::layout_volume(L, o);
+  CHECK(rl.volume.number_of_patches() == 4 + 4 * 4 + 2);
+  for(std::size_t p = 0; p < rl.core_of.size(); ++p) {
+    if(rl.slab_of[p] >= 0) CHECK(L.patches[std::size_t(rl.slab_of[p])].kind == Layout::SURFACE);
+    else CHECK(rl.core_of[p] == 0);
+  }
+  for(const auto& b : rl.quality.certified) CHECK(b.certified_positive);
+}
+
+TEST_CASE("a long bent tube is valid as a chain", "[layout_volume][chains]")
+{
+  // One cuboid bent through a quarter turn and twisted, 4 times as long as wide.
+  const auto bend = bend_and_twist(4);
+  const Layout L = box_chain_layout(1, 4, true, [&](double x, double y, double z) { return bend(4. * x, y, z); });
+  PI::Layout_volume_options o = small_options(8);
+  o.maximum_cuboid_aspect = 2.;
+  const PI::Layout_volume_result chain = PI::layout_volume(L, o);
+  const PI::Layout_volume_result single = PI::layout_volume(L, small_options(8));
+  REQUIRE(chain.volume.number_of_patches() == 4);
+  for(const auto& b : chain.quality.certified) CHECK(b.certified_positive);
+  CHECK(chain.quality.overall_sampled.min_scaled_jacobian >= single.quality.overall_sampled.min_scaled_jacobian);
+  CHECK(chain.distance.relative <= single.distance.relative + 1e-9);
+}
+
 TEST_CASE("layout volume of a bent and twisted chain stays valid and close to the mesh", "[layout_volume]")
 {
   for(bool open : {true, false}) {

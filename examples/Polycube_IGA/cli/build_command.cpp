@@ -40,6 +40,18 @@ int positive_option(const Parsed_arguments& a, const std::string& name, int fall
   return int(v);
 }
 
+double fraction_option(const Parsed_arguments& a, const std::string& name, double fallback, double lo, double hi)
+{
+  if(!a.has(name)) return fallback;
+  const std::string text = a.get(name);
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if(end == text.c_str() || *end != '\0' || !(v >= lo && v < hi))
+    throw PI::Invalid_input_error("bad_arguments", name + " expects a number in [" + std::to_string(lo) + ", " +
+                                                     std::to_string(hi) + "), got '" + text + "'");
+  return v;
+}
+
 template <class Model>
 void write_report(const std::string& path, const Input_mesh& in, const Model& model, double read_seconds, bool written)
 {
@@ -63,6 +75,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("grid", V.samples.segments)
       .member("degree", V.degree)
       .member("spans", V.spans)
+      .member("boundary_layer", !V.slab_of.empty())
       .member("valid", model.is_valid())
       .member("volume_written", written);
     w.key("patch_quality").begin_array();
@@ -71,6 +84,8 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       const auto& b = V.quality.certified[c];
       w.begin_object()
         .member("patch", c)
+        .member("core_of_cuboid", V.core_of.empty() ? long(c) : V.core_of[c])
+        .member("slab_of_surface_patch", V.slab_of.empty() ? -1L : V.slab_of[c])
         .member("min_scaled_jacobian", s.min_scaled_jacobian)
         .member("mean_scaled_jacobian", s.mean_scaled_jacobian)
         .member("min_sampled_jacobian", s.min_determinant)
@@ -104,13 +119,15 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
 int run_build(const Arguments& args)
 {
   Parsed_arguments a(args, {"--merge-duplicates", "--drop-isolated", "--no-self-intersection-test", "--allow-invalid", "--quiet"},
-                     {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion"});
+                     {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
+                      "--boundary-layer"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
   if(out.empty()) throw PI::Invalid_input_error("bad_arguments", "build needs -o OUT.xml");
   const int grid = positive_option(a, "--grid", 16, 2, 512);
   const int degree = positive_option(a, "--degree", 3, 1, 7);
   const PI::Cut_criterion criterion = PI::parse_cut_criterion(a.get("--criterion", "length"));
+  const double layer = fraction_option(a, "--boundary-layer", 0.25, 0., 0.5);
   const bool verbose = !a.has("--quiet") && isatty(2);
   auto progress = [&](const std::string& stage) {
     if(verbose) std::cerr << "polycube_iga: " << stage << "...\n";
@@ -122,7 +139,8 @@ int run_build(const Arguments& args)
   in.report.require_valid();
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto model = PI::build_trivariate_model(
-    in.mesh, PI::parameters::grid_resolution(grid).spline_degree(degree).cut_criterion(criterion), progress);
+    in.mesh, PI::parameters::grid_resolution(grid).spline_degree(degree).cut_criterion(criterion).boundary_layer(layer),
+    progress);
 
   const bool write_volume = model.is_valid() || a.has("--allow-invalid");
   if(a.has("--layout-vtu")) PI::IO::write_layout_vtu(a.get("--layout-vtu"), model.layout);
@@ -153,6 +171,7 @@ Register_command build_command("build", {
   "the whole chain: mesh -> polycube layout -> multipatch B-spline volume (G+Smo XML)",
   "usage: polycube_iga build MESH -o OUT.xml [--vtu OUT.vtu] [--layout-vtu L.vtu] [--layout-json L.json]\n"
   "                          [--report R.json] [--grid N] [--degree P] [--criterion length|minima|symmetry]\n"
+  "                          [--boundary-layer T]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
   "  --layout-vtu L    the polycube layout on the surface: patches, arcs, nodes\n"
@@ -160,6 +179,8 @@ Register_command build_command("build", {
   "  --report R.json   counts, per-patch scaled and certified Jacobians, Hausdorff distance,\n"
   "                    seconds per stage, warnings (written even when the volume is not)\n"
   "  --grid N          samples per patch side (default 16)   --degree P  spline degree (default 3)\n"
+  "  --boundary-layer T  depth of the layer of slabs under the surface, as a fraction of the\n"
+  "                    shortest arc at each node (default 0.25; 0: one patch per cuboid)\n"
   "  --allow-invalid   write the volume even if some det J is not certified positive\n"
   "  exit 1 with nonpositive_jacobian when the volume is not certified valid (nothing written)\n",
   run_build});

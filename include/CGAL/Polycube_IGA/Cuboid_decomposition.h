@@ -348,18 +348,81 @@ private:
     const std::vector<double> dp = distances_from<Point>(g, {p});
     const int q = int(std::max_element(dp.begin(), dp.end()) - dp.begin());
     const std::vector<double> dq = distances_from<Point>(g, {q});
-    std::vector<int> face_side(num_faces(m));
-    for(auto f : faces(m)) {
-      int s = 0;
-      for(auto v : vertices_around_face(halfedge(f, m), m)) s |= dp[v] < dq[v] ? 0 : 1;
-      face_side[f] = s;
+    // The belt must zigzag: a cube seen along its diagonal (corners p and q) has its other
+    // six corners alternately nearer p and nearer q. On the bisector, every face would have
+    // a 180-degree corner at its middle belt node (det J = 0 there). So the cut is the level
+    // set f = dp - dq = (A/2) cos(6 pi t), t in [0, 1) the arc-length position of the
+    // nearest bisector vertex along the bisector, A = (acos(1/3) - acos(-1/3)) / pi d(p, q)
+    // < 0 the value of f at the corners nearer p of an inscribed cube, and the six nodes sit
+    // at its extremes. Half that amplitude measured best on sphere.off (boundary-layer
+    // volume: mean scaled Jacobian 0.89, against 0.79 with the full one, 0.80 on the bisector).
+    auto sides_of = [&](const std::vector<double>& shift) {
+      std::vector<int> side(num_faces(m));
+      for(auto f : faces(m)) {
+        int s = 0;
+        for(auto v : vertices_around_face(halfedge(f, m), m)) s |= dp[v] - dq[v] < shift[v] ? 0 : 1;
+        side[f] = s;
+      }
+      return side;
+    };
+    const std::size_t nv = num_vertices(m);
+    std::vector<int> face_side = sides_of(std::vector<double>(nv, 0.));
+    std::vector<double> zigzag(nv, 0.);
+    std::vector<double> position(nv, -1.); // t of the nearest bisector vertex
+    bool zigzag_cut = false;
+    {
+      std::vector<double> belt_position(nv, -1.);
+      // Bisector vertices: those on side 0 with a neighbour on side 1, in loop order by a
+      // walk along the cut of the plain split.
+      std::vector<bool> cut0(num_edges(m), false);
+      for(auto e : edges(m)) {
+        const auto h = halfedge(e, m);
+        cut0[e] = face_side[face(h, m)] != face_side[face(opposite(h, m), m)];
+      }
+      std::vector<Mesh> halves = cut_into_pieces(m, cut0);
+      if(halves.size() == 2) {
+        const std::vector<V> loop = border_loop(halves[0]);
+        const std::vector<std::size_t> par = vertex_parents(halves[0]);
+        const std::vector<double> t = loop_arc_length(halves[0], loop);
+        std::vector<int> roots;
+        for(std::size_t i = 0; i < loop.size(); ++i) {
+          const std::size_t v = par[loop[i]];
+          if(v < nv && belt_position[v] < 0.) { belt_position[v] = t[i] / t.back(); roots.push_back(int(v)); }
+        }
+        std::vector<double> w(std::size_t(g.number_of_edges()));
+        for(int e = 0; e < g.number_of_edges(); ++e) w[std::size_t(e)] = g.length(e);
+        const Shortest_path_tree tree = shortest_path_tree(g, roots, w);
+        position = belt_position;
+        for(int v : tree.order) {
+          const int e = tree.parent_edge[std::size_t(v)];
+          if(e < 0) continue;
+          const auto& ev = g.edge_vertices[std::size_t(e)];
+          position[std::size_t(v)] = position[std::size_t(ev[0] == v ? ev[1] : ev[0])];
+        }
+        const double A = (std::acos(1. / 3.) - std::acos(-1. / 3.)) / CGAL_PI * dp[std::size_t(q)];
+        for(std::size_t v = 0; v < nv; ++v)
+          if(position[v] >= 0.) zigzag[v] = 0.5 * A * std::cos(6. * CGAL_PI * position[v]);
+        std::vector<int> zig = sides_of(zigzag);
+        if(std::count(zig.begin(), zig.end(), 0) > 0 && std::count(zig.begin(), zig.end(), 1) > 0) {
+          face_side = std::move(zig);
+          zigzag_cut = true;
+        }
+      }
     }
-    std::vector<bool> cut(num_edges(m), false);
-    for(auto e : edges(m)) {
-      const auto h = halfedge(e, m);
-      cut[e] = face_side[face(h, m)] != face_side[face(opposite(h, m), m)];
+    auto split = [&](const std::vector<int>& side) {
+      std::vector<bool> cut(num_edges(m), false);
+      for(auto e : edges(m)) {
+        const auto h = halfedge(e, m);
+        cut[e] = side[face(h, m)] != side[face(opposite(h, m), m)];
+      }
+      return cut_into_pieces(m, cut);
+    };
+    std::vector<Mesh> pieces = split(face_side);
+    if(zigzag_cut && pieces.size() != 2) { // the zigzag did not leave two disks: the plain cut
+      zigzag_cut = false;
+      zigzag.assign(nv, 0.);
+      pieces = split(sides_of(zigzag));
     }
-    std::vector<Mesh> pieces = cut_into_pieces(m, cut);
     if(pieces.size() != 2) layout_failure("the sphere does not split into two disks");
     std::vector<std::vector<V>> loops;
     for(auto& piece : pieces) loops.push_back(border_loop(piece));
@@ -368,6 +431,44 @@ private:
     const std::vector<double> s0 = loop_arc_length(pieces[0], loops[0]);
     std::vector<std::size_t> belt_index;
     for(int i = 0; i < 6; ++i) belt_index.push_back(at_arc_length(s0, 0, s0.back() * i / 6.));
+    if(zigzag_cut) {
+      // The nodes are the zigzag's extremes (t = i/6), in piece 0's loop order, starting
+      // with one where piece 0 is narrow (its corner's neighbours): t = 0, 2/6, 4/6 when
+      // piece 0 lies on the side dp - dq < shift, the others otherwise.
+      std::vector<bool> on_loop(num_vertices(pieces[0]), false);
+      for(V v : loops[0]) on_loop[v] = true;
+      bool side1 = false;
+      for(V v : vertices(pieces[0]))
+        if(!on_loop[v] && par0[v] < nv && dp[par0[v]] - dq[par0[v]] >= zigzag[par0[v]]) side1 = true;
+      std::vector<std::pair<std::size_t, int>> extremes; // (loop index, i)
+      for(int i = 0; i < 6; ++i) {
+        std::size_t best = 0;
+        double gap = 2.;
+        for(std::size_t k = 0; k < loops[0].size(); ++k) {
+          const std::size_t v = par0[loops[0][k]];
+          if(v >= nv || position[v] < 0.) continue;
+          double d = std::abs(position[v] - i / 6.);
+          d = std::min(d, 1. - d);
+          if(d < gap) { gap = d; best = k; }
+        }
+        extremes.push_back({best, i});
+      }
+      std::sort(extremes.begin(), extremes.end());
+      std::size_t first = 0;
+      while(first < 6 && (extremes[first].second % 2 == 0) == side1) ++first;
+      if(first < 6) {
+        std::vector<std::size_t> zig_index;
+        for(std::size_t j = 0; j < 6; ++j) zig_index.push_back(extremes[(first + j) % 6].first);
+        // Rotate the loop so that its first node is at index 0 (indices must increase).
+        std::rotate(loops[0].begin(), loops[0].begin() + std::ptrdiff_t(zig_index[0]), loops[0].end());
+        const std::size_t shift = zig_index[0], n = loops[0].size();
+        bool increasing = true;
+        for(std::size_t j = 0; j < 6; ++j) zig_index[j] = (zig_index[j] + n - shift) % n;
+        for(std::size_t j = 0; j + 1 < 6; ++j) increasing = increasing && zig_index[j] < zig_index[j + 1];
+        if(increasing) belt_index = zig_index;
+        else std::rotate(loops[0].begin(), loops[0].begin() + std::ptrdiff_t((n - shift) % n), loops[0].end());
+      }
+    }
     for(int i = 0; i < 5; ++i)
       if(belt_index[std::size_t(i)] >= belt_index[std::size_t(i + 1)]) layout_failure("the sphere's belt is too coarse for 6 nodes");
     std::array<std::size_t, 6> belt;

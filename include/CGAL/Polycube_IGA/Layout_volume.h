@@ -23,6 +23,8 @@
 
 #include <CGAL/Polycube_IGA/Boundary_distance.h>
 #include <CGAL/Polycube_IGA/Bspline_volume_construction.h>
+#include <CGAL/Polycube_IGA/Layout_chains.h>
+#include <CGAL/Polycube_IGA/Layout_padding.h>
 #include <CGAL/Polycube_IGA/Multipatch_volume.h>
 #include <CGAL/Polycube_IGA/Patch_sampling.h>
 #include <CGAL/Polycube_IGA/Quality.h>
@@ -51,6 +53,14 @@ struct Layout_volume_options
   /// default each arc and patch is fitted once and shared, which makes the two sides of an
   /// interface bit-identical; per cuboid, they agree to rounding only (and cost twice).
   bool per_cuboid_fit = false;
+  /// Boundary layer (Layout_padding.h): its depth at a node as a fraction of the shortest
+  /// arc there; 0 (the default here) builds one volume per cuboid without a layer.
+  /// build_trivariate_model() uses 0.25.
+  double boundary_layer = 0.;
+  /// Tubes longer than this many times their width become chains of cube-like cuboids
+  /// (Layout_chains.h) before the volume is built; 0 (the default here) keeps the layout's
+  /// cuboids. build_trivariate_model() uses 2.
+  double maximum_cuboid_aspect = 0.;
   bool evaluate_quality = true;        ///< Jacobians, interface conformity, boundary distance
   int quality_samples_per_span = 5;    ///< Jacobian and conformity sampling
   int distance_samples_per_direction = 32; ///< per boundary side, for the Hausdorff distance
@@ -63,6 +73,10 @@ struct Layout_volume_result
   Multipatch_volume volume;  ///< patch c is cuboid c; interfaces from the layout, other sides boundaries
   Patch_grids samples;       ///< the per-patch grids the faces were fitted to
   int degree = 0, spans = 0;
+  /// With a boundary layer or chains, per volume patch: the layout cuboid it is (a piece of)
+  /// the core of, or the layout's SURFACE patch its slab lies under (-1 otherwise). Empty
+  /// when neither is used (then patch c is cuboid c).
+  std::vector<long> core_of, slab_of;
   /// Per cuboid: fitted with u reversed because its layout frame is left-handed.
   std::vector<bool> mirrored;
   /// Per cuboid: side s (1..6) of the volume patch is side layout_side[c][s-1] of the layout
@@ -218,19 +232,13 @@ inline Patch_interface interface_from_nodes(std::size_t pa, int sa, const std::a
 
 } // namespace internal
 
-/*!
- * \ingroup PkgPolycubeIGARef
- * Builds the multipatch volume of `layout` from its patch grids `samples`
- * (sample_layout_patches()): one volume per cuboid (§4.1 recipe) with uniform knots of
- * degree `o.degree` and `o.spans` spans (0: max(1, N/4)) in every direction, the layout's
- * interfaces declared, left-handed cuboids fitted mirrored, and (if `o.evaluate_quality`)
- * per-patch Jacobians, interface conformity and the boundary Hausdorff distance to
- * `layout.mesh` measured on the sides that lie on SURFACE patches (caps span boundary
- * loops, the mesh has nothing there). Deterministic.
- */
+namespace internal {
+
+// layout_volume() without a boundary layer; cuboid c is built without interior smoothing
+// where coons_only[c] (if given).
 template <class Point_3>
-Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout, Patch_grids samples,
-                                   const Layout_volume_options& o = Layout_volume_options())
+Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout, Patch_grids samples, const Layout_volume_options& o,
+                                   const std::vector<bool>& coons_only)
 {
   using Layout = Polycube_layout<Point_3>;
   using Clock = std::chrono::steady_clock;
@@ -320,7 +328,9 @@ Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout, Patch
     for(int s = 1; s <= 6; ++s)
       faces[std::size_t(s - 1)] =
         internal::transformed_surface(patch_surface[cu.patches[std::size_t(s - 1)]], internal::side_symmetry(layout, cu, s));
-    r.volume.add_patch(build_bspline_volume(faces, o.construction).volume);
+    Volume_construction_options construction = o.construction;
+    if(c < coons_only.size() && coons_only[c]) construction.smoothing = Interior_smoothing::none;
+    r.volume.add_patch(build_bspline_volume(faces, construction).volume);
   }
 
   // Interfaces from the layout; every other side is a boundary.
@@ -357,6 +367,59 @@ Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout, Patch
   return r;
 }
 
+} // namespace internal
+
+/*!
+ * \ingroup PkgPolycubeIGARef
+ * Builds the multipatch volume of `layout` from its patch grids `samples`
+ * (sample_layout_patches()): one volume per cuboid (§4.1 recipe) with uniform knots of
+ * degree `o.degree` and `o.spans` spans (0: max(1, N/4)) in every direction, the layout's
+ * interfaces declared, left-handed cuboids fitted mirrored, and (if `o.evaluate_quality`)
+ * per-patch Jacobians, interface conformity and the boundary Hausdorff distance to
+ * `layout.mesh` measured on the sides that lie on SURFACE patches (caps span boundary
+ * loops, the mesh has nothing there). With `o.boundary_layer` > 0 the
+ * volume is that of pad_layout(): cores first (patch c the core of cuboid c), then one slab
+ * per SURFACE patch (Layout_volume_result::core_of / slab_of). Deterministic.
+ */
+template <class Point_3>
+Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout, Patch_grids samples,
+                                   const Layout_volume_options& o = Layout_volume_options())
+{
+  if(!(o.boundary_layer > 0.) && !(o.maximum_cuboid_aspect > 0.)) return internal::layout_volume(layout, std::move(samples), o, {});
+  const Polycube_layout<Point_3>* L = &layout;
+  Chained_layout<Point_3> chained;
+  if(o.maximum_cuboid_aspect > 0.) {
+    Cuboid_chain_options co;
+    co.maximum_aspect = o.maximum_cuboid_aspect;
+    chained = split_long_cuboids(layout, samples, o.sampling, co);
+    samples = std::move(chained.samples);
+    L = &chained.layout;
+  }
+  auto input_cuboid = [&](long c) { return c < 0 || chained.cuboid_of.empty() ? c : chained.cuboid_of[std::size_t(c)]; };
+  auto input_patch = [&](long p) { return p < 0 || chained.patch_of.empty() ? p : chained.patch_of[std::size_t(p)]; };
+  Layout_volume_options plain = o;
+  plain.boundary_layer = 0.;
+  plain.maximum_cuboid_aspect = 0.;
+  Layout_volume_result r;
+  if(o.boundary_layer > 0.) {
+    Padding_options po;
+    po.thickness = o.boundary_layer;
+    Padded_layout<Point_3> padded = pad_layout(*L, samples, po);
+    // Slabs keep their Coons interiors: the uniform control-net Laplacian of the harmonic
+    // smoothing treats a thin curved slab as a cube and pulls it towards its chords.
+    std::vector<bool> coons_only(padded.layout.cuboids.size(), false);
+    for(std::size_t c = 0; c < coons_only.size(); ++c) coons_only[c] = padded.slab_of[c] >= 0;
+    r = internal::layout_volume(padded.layout, std::move(padded.samples), plain, coons_only);
+    for(long c : padded.core_of) r.core_of.push_back(input_cuboid(c));
+    for(long p : padded.slab_of) r.slab_of.push_back(input_patch(p));
+  } else {
+    r = internal::layout_volume(*L, std::move(samples), plain, {});
+    for(long c : chained.cuboid_of) r.core_of.push_back(c);
+    r.slab_of.assign(r.core_of.size(), -1);
+  }
+  return r;
+}
+
 /// Samples the patches (sample_layout_patches()) and builds the volume from them.
 template <class Point_3>
 Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout, const Layout_volume_options& o)
@@ -372,7 +435,9 @@ Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout, const
 /*!
  * Named-parameter form: `grid_resolution` (N, default 16), `smooth_interior_patches`
  * (true), `spline_degree` (3), `number_of_spans` (max(1, N/4)), `stretching_weight` (0),
- * `bending_weight` (1e-6) and `data_weight` (1) override the fields of `base`.
+ * `bending_weight` (1e-6), `data_weight` (1), `boundary_layer` (0: none) and
+ * `maximum_cuboid_aspect` (0: no chains)
+ * override the fields of `base`.
  * Example: `layout_volume(layout, parameters::grid_resolution(32).spline_degree(2))`.
  */
 template <class Point_3, class NamedParameters = parameters::Default_named_parameters>
@@ -388,6 +453,8 @@ Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout,
   base.stretching_weight = option(np, internal_np::stretching_weight, base.stretching_weight);
   base.bending_weight = option(np, internal_np::bending_weight, base.bending_weight);
   base.data_weight = option(np, internal_np::data_weight, base.data_weight);
+  base.boundary_layer = option(np, internal_np::boundary_layer, base.boundary_layer);
+  base.maximum_cuboid_aspect = option(np, internal_np::maximum_cuboid_aspect, base.maximum_cuboid_aspect);
   return layout_volume(layout, base);
 }
 

@@ -163,6 +163,20 @@ inline void coons_grid_interior(Point_grid& g, int N)
     }
 }
 
+/// The border rows of patch `pa` of layout `L` from the arcs' samples (set_grid_border()).
+template <class Layout>
+void set_patch_border(Point_grid& g, int N, const Layout& L, const typename Layout::Patch& pa,
+                      const std::vector<std::vector<Eigen::Vector3d>>& arc_samples)
+{
+  std::array<const std::vector<Eigen::Vector3d>*, 4> arc;
+  std::array<bool, 4> forward;
+  for(int i = 0; i < 4; ++i) {
+    arc[std::size_t(i)] = &arc_samples[pa.arcs[std::size_t(i)]];
+    forward[std::size_t(i)] = L.arcs[pa.arcs[std::size_t(i)]].nodes[0] == pa.corners[std::size_t(i)];
+  }
+  set_grid_border(g, N, arc, forward);
+}
+
 /// The 5-point graph Laplacian of the (N-1)^2 interior grid nodes, factored once and shared
 /// by every CAP and INTERFACE patch (they all have the same grid).
 class Grid_harmonic_solver
@@ -357,19 +371,23 @@ Surface_patch_map map_surface_patch(const Layout& L, std::size_t p, const std::v
   return M;
 }
 
-/// Fills the interior of grid `g` from the uv map: each grid point (i/N, j/N) located in a
+/// Fills the interior of grid `g` from the uv map: grid point (i, j) at uv (cu[i], cv[j])
+/// (increasing coordinates from 0 to 1; g is cu.size() x cv.size()) located in a
 /// counter-clockwise uv triangle (exact predicates; each triangle visits only the grid
 /// points of its bounding box, so the cost is O(triangles + grid)), then interpolated
 /// barycentrically in 3D. Returns the number of points no triangle contained (they take
 /// the nearest triangle's closest point; 0 for a one-to-one map).
-inline int sample_surface_grid(const Surface_patch_map& M, int N, Point_grid& g)
+inline int sample_surface_grid(const Surface_patch_map& M, const std::vector<double>& cu, const std::vector<double>& cv,
+                               Point_grid& g)
 {
   using P2 = Epick_2::Point_2;
-  if(N < 2) return 0;
-  const int m = N - 1;
-  std::vector<int> owner(std::size_t(m) * std::size_t(m), -1);
-  std::vector<double> coord(std::size_t(N) + 1);
-  for(int i = 0; i <= N; ++i) coord[std::size_t(i)] = double(i) / double(N);
+  const int Nu = int(cu.size()) - 1, Nv = int(cv.size()) - 1;
+  if(Nu < 2 || Nv < 2) return 0;
+  const int mu = Nu - 1;
+  std::vector<int> owner(std::size_t(mu) * std::size_t(Nv - 1), -1);
+  // First index whose coordinate is >= x, and last whose coordinate is <= x.
+  auto first_at_least = [](const std::vector<double>& c, double x) { return int(std::lower_bound(c.begin(), c.end(), x) - c.begin()); };
+  auto last_at_most = [](const std::vector<double>& c, double x) { return int(std::upper_bound(c.begin(), c.end(), x) - c.begin()) - 1; };
   auto interpolate = [&](std::size_t f, const Eigen::Vector2d& q) {
     const auto& t = M.triangles[f];
     const Eigen::Vector2d& a = M.uv[std::size_t(t[0])];
@@ -392,29 +410,29 @@ inline int sample_surface_grid(const Surface_patch_map& M, int N, Point_grid& g)
     const double u0 = std::min({a.x(), b.x(), c.x()}), u1 = std::max({a.x(), b.x(), c.x()});
     const double v0 = std::min({a.y(), b.y(), c.y()}), v1 = std::max({a.y(), b.y(), c.y()});
     // One index of slack either way; the exact test decides.
-    const int i0 = std::max(1, int(std::floor(u0 * N)) - 1), i1 = std::min(N - 1, int(std::ceil(u1 * N)) + 1);
-    const int j0 = std::max(1, int(std::floor(v0 * N)) - 1), j1 = std::min(N - 1, int(std::ceil(v1 * N)) + 1);
+    const int i0 = std::max(1, first_at_least(cu, u0) - 1), i1 = std::min(Nu - 1, last_at_most(cu, u1) + 1);
+    const int j0 = std::max(1, first_at_least(cv, v0) - 1), j1 = std::min(Nv - 1, last_at_most(cv, v1) + 1);
     if(i0 > i1 || j0 > j1) continue;
     const P2 A(a.x(), a.y()), B(b.x(), b.y()), Cc(c.x(), c.y());
     for(int j = j0; j <= j1; ++j)
       for(int i = i0; i <= i1; ++i) {
-        int& o = owner[std::size_t(i - 1) + std::size_t(m) * std::size_t(j - 1)];
+        int& o = owner[std::size_t(i - 1) + std::size_t(mu) * std::size_t(j - 1)];
         if(o >= 0) continue;
-        const P2 q(coord[std::size_t(i)], coord[std::size_t(j)]);
+        const P2 q(cu[std::size_t(i)], cv[std::size_t(j)]);
         if(CGAL::orientation(A, B, q) == CGAL::RIGHT_TURN || CGAL::orientation(B, Cc, q) == CGAL::RIGHT_TURN ||
            CGAL::orientation(Cc, A, q) == CGAL::RIGHT_TURN)
           continue;
         o = int(f);
-        g(i, j) = interpolate(f, Eigen::Vector2d(coord[std::size_t(i)], coord[std::size_t(j)]));
+        g(i, j) = interpolate(f, Eigen::Vector2d(cu[std::size_t(i)], cv[std::size_t(j)]));
       }
   }
   // Points left over (only when the map folds): the closest point of the nearest triangle.
   int unlocated = 0;
-  for(int j = 1; j < N; ++j)
-    for(int i = 1; i < N; ++i) {
-      if(owner[std::size_t(i - 1) + std::size_t(m) * std::size_t(j - 1)] >= 0) continue;
+  for(int j = 1; j < Nv; ++j)
+    for(int i = 1; i < Nu; ++i) {
+      if(owner[std::size_t(i - 1) + std::size_t(mu) * std::size_t(j - 1)] >= 0) continue;
       ++unlocated;
-      const Eigen::Vector2d q(coord[std::size_t(i)], coord[std::size_t(j)]);
+      const Eigen::Vector2d q(cu[std::size_t(i)], cv[std::size_t(j)]);
       double best = std::numeric_limits<double>::infinity();
       Eigen::Vector3d bp = Eigen::Vector3d::Zero();
       for(std::size_t f = 0; f < M.triangles.size(); ++f) {
@@ -437,6 +455,21 @@ inline int sample_surface_grid(const Surface_patch_map& M, int N, Point_grid& g)
       g(i, j) = bp;
     }
   return unlocated;
+}
+
+/// N + 1 coordinates i / N.
+inline std::vector<double> uniform_coordinates(int N)
+{
+  std::vector<double> c(std::size_t(std::max(N, 0)) + 1);
+  for(int i = 0; i <= N; ++i) c[std::size_t(i)] = double(i) / double(N);
+  return c;
+}
+
+/// The (N+1)^2 grid at (i/N, j/N).
+inline int sample_surface_grid(const Surface_patch_map& M, int N, Point_grid& g)
+{
+  const std::vector<double> c = uniform_coordinates(N);
+  return sample_surface_grid(M, c, c, g);
 }
 
 /// Checks what the sampler relies on (index ranges, arcs joining their corners), so that a
@@ -508,13 +541,7 @@ Patch_grids sample_layout_patches(const Polycube_layout<Point_3>& layout, const 
   for(std::size_t p = 0; p < layout.patches.size(); ++p) {
     const auto& pa = layout.patches[p];
     Point_grid& g = r.grids[p];
-    std::array<const std::vector<Eigen::Vector3d>*, 4> arc;
-    std::array<bool, 4> forward;
-    for(int i = 0; i < 4; ++i) {
-      arc[std::size_t(i)] = &r.arc_samples[pa.arcs[std::size_t(i)]];
-      forward[std::size_t(i)] = layout.arcs[pa.arcs[std::size_t(i)]].nodes[0] == pa.corners[std::size_t(i)];
-    }
-    internal::set_grid_border(g, N, arc, forward);
+    internal::set_patch_border(g, N, layout, pa, r.arc_samples);
     if(N < 2) continue;
     if(pa.kind == Layout::SURFACE) {
       const internal::Surface_patch_map M = internal::map_surface_patch(layout, p, cum, local_of);
@@ -528,7 +555,7 @@ Patch_grids sample_layout_patches(const Polycube_layout<Point_3>& layout, const 
       }
     }
     // The border rows stay the arc samples, bit for bit.
-    internal::set_grid_border(g, N, arc, forward);
+    internal::set_patch_border(g, N, layout, pa, r.arc_samples);
   }
   return r;
 }

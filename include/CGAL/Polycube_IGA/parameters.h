@@ -43,7 +43,10 @@ namespace Polycube_IGA {
   X(number_of_spans_t, number_of_spans)                                             \
   /* patch sampling */                                                              \
   X(grid_resolution_t, grid_resolution)                                             \
-  X(smooth_interior_patches_t, smooth_interior_patches)
+  X(smooth_interior_patches_t, smooth_interior_patches)                             \
+  /* volume */                                                                      \
+  X(boundary_layer_t, boundary_layer)                                               \
+  X(maximum_cuboid_aspect_t, maximum_cuboid_aspect)
 
 namespace internal_np {
 #define CGAL_POLYCUBE_IGA_DECLARE_TAG(TAG, NAME) enum TAG { NAME };

@@ -1,0 +1,280 @@
+// Copyright (c) 2026 Polycube_IGA contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// A boundary layer ("padding") for the layout volume.
+//
+// Why: where two SURFACE sides of one cuboid meet along an arc of a smooth surface, their
+// tangent planes agree, so the three partial derivatives of the cuboid's map lie in one
+// plane along that arc and det J -> 0 there; any fitting error makes it negative. This is
+// what spoils the volumes of the sphere's cube and of the pants' arms (reference §4.1 and
+// its §Limitations show the same symptom). The cure, as in polycube hexahedral meshing
+// ("pillowing", a layer of cells under the surface), is to move the polycube inward and to
+// fill the gap with one slab per SURFACE patch:
+//
+//   * every node n gets an inner node n' = n - d_n N_n (N_n the outward unit normal averaged
+//     over the surface patches at n, d_n = thickness x the shortest arc at n);
+//   * every arc a gets an inner arc a' (its samples moved along the blend of its two ends'
+//     offsets, by the blended depth: straight arcs and flat faces stay so, circles stay
+//     circles) and a wall: the quad between a and a', closed by the straight radial
+//     segments n -> n';
+//   * every patch p gets an inner patch p' spanned by the inner arcs of its sides (discrete
+//     Coons + harmonic grid, like every interior patch);
+//   * the core cuboids are the layout's cuboids on the inner nodes, arcs and patches; the
+//     slab of a SURFACE patch p has p on top, p' below and the walls of p's arcs around.
+//
+// Every slab touches the surface with one side only and its walls leave the surface at
+// about a right angle; the core's edges are inner arcs whose faces are Coons patches, which
+// meet at a crease rather than tangentially. The result is again a Polycube_layout (nodes
+// 0..n-1 outer, n..2n-1 inner) with its Patch_grids, so layout_volume() builds, glues and
+// measures it like any other; inner nodes reuse their outer node's vertex as a placeholder
+// (the geometry of the padded layout is in its grids, not on the mesh).
+
+#ifndef CGAL_POLYCUBE_IGA_LAYOUT_PADDING_H
+#define CGAL_POLYCUBE_IGA_LAYOUT_PADDING_H
+
+#include <CGAL/Polycube_IGA/Errors.h>
+#include <CGAL/Polycube_IGA/Patch_sampling.h>
+#include <CGAL/Polycube_IGA/Polycube_layout.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Polycube_IGA {
+
+/// Options of pad_layout().
+struct Padding_options
+{
+  /// Depth of the layer at a node, as a fraction of the shortest arc at that node.
+  double thickness = 0.25;
+};
+
+/// A padded layout: the layout of cores and slabs, its grids, and where each cuboid came from.
+template <class Point_3>
+struct Padded_layout
+{
+  Polycube_layout<Point_3> layout;
+  Patch_grids samples;
+  /// Per cuboid of `layout`: the cuboid of the original layout it is the core of, or -1.
+  std::vector<long> core_of;
+  /// Per cuboid of `layout`: the SURFACE patch of the original layout it is the slab of, or -1.
+  std::vector<long> slab_of;
+};
+
+namespace internal {
+
+/// Grid index of sample k (from corner i) along side i of a patch square (set_grid_border()).
+inline std::array<int, 2> border_index(int i, int k, int N)
+{
+  switch(i) {
+  case 0: return {{k, 0}};
+  case 1: return {{N, k}};
+  case 2: return {{N - k, N}};
+  default: return {{0, N - k}};
+  }
+}
+
+/// Unit normal grid u x grid v at (i, j), by central differences (one-sided on the border);
+/// zero where the grid is degenerate.
+inline Eigen::Vector3d grid_normal(const Point_grid& g, int i, int j)
+{
+  const int nu = g.size_u - 1, nv = g.size_v - 1;
+  const Eigen::Vector3d du = g(std::min(i + 1, nu), j) - g(std::max(i - 1, 0), j);
+  const Eigen::Vector3d dv = g(i, std::min(j + 1, nv)) - g(i, std::max(j - 1, 0));
+  const Eigen::Vector3d n = du.cross(dv);
+  const double l = n.norm();
+  return l > 0. ? Eigen::Vector3d(n / l) : Eigen::Vector3d::Zero();
+}
+
+inline double polyline_length(const std::vector<Eigen::Vector3d>& pts)
+{
+  double l = 0.;
+  for(std::size_t k = 1; k < pts.size(); ++k) l += (pts[k] - pts[k - 1]).norm();
+  return l;
+}
+
+} // namespace internal
+
+/*!
+ * \ingroup PkgPolycubeIGARef
+ * The layout of cores and slabs described in this header, with its grids, from `layout`
+ * and its patch grids `samples` (sample_layout_patches()). Cuboid c < layout.cuboids.size()
+ * of the result is the core of cuboid c; the slabs follow in the order of the SURFACE
+ * patches. Throws Invalid_input_error("invalid_grid") if the grids do not belong to the
+ * layout or are too coarse (N < 2), and Invalid_input_error("invalid_layout") if a node
+ * lies on no surface patch or has no usable normal.
+ */
+template <class Point_3>
+Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const Patch_grids& samples,
+                                  const Padding_options& o = Padding_options())
+{
+  using Layout = Polycube_layout<Point_3>;
+  const int N = samples.segments;
+  const std::size_t nn = layout.nodes.size(), na = layout.arcs.size(), np = layout.patches.size();
+  if(N < 2 || samples.arc_samples.size() != na || samples.grids.size() != np)
+    throw Invalid_input_error("invalid_grid", "padding needs the layout's patch grids with at least 2 segments");
+  if(!(o.thickness > 0. && o.thickness < 0.5))
+    throw Invalid_input_error("invalid_parameter", "the boundary layer thickness must lie in (0, 0.5)");
+
+  // Outward normals at the nodes, from the SURFACE grids (their u x v points out of the
+  // solid, Patch_sampling.h): sums of the unit normals at the corners of the surface
+  // patches around each node.
+  std::vector<Eigen::Vector3d> node_normal(nn, Eigen::Vector3d::Zero());
+  std::vector<int> surface_sides(na, 0);
+  for(std::size_t p = 0; p < np; ++p) {
+    const auto& pa = layout.patches[p];
+    if(pa.kind != Layout::SURFACE) continue;
+    for(int i = 0; i < 4; ++i) {
+      ++surface_sides[pa.arcs[std::size_t(i)]];
+      const std::array<int, 2> c = internal::border_index(i, 0, N);
+      node_normal[pa.corners[std::size_t(i)]] += internal::grid_normal(samples.grids[p], c[0], c[1]);
+    }
+  }
+
+  // Depth per node, and the nodes' positions taken from the arc samples (bit-identical to
+  // the grids' corners).
+  const double infinity = std::numeric_limits<double>::infinity();
+  std::vector<double> depth(nn, infinity);
+  std::vector<Eigen::Vector3d> outer(nn, Eigen::Vector3d::Zero());
+  for(std::size_t a = 0; a < na; ++a) {
+    const auto& s = samples.arc_samples[a];
+    const double l = o.thickness * internal::polyline_length(s);
+    for(int e = 0; e < 2; ++e) {
+      const std::size_t n = layout.arcs[a].nodes[std::size_t(e)];
+      depth[n] = std::min(depth[n], l);
+      outer[n] = e == 0 ? s.front() : s.back();
+    }
+  }
+  std::vector<Eigen::Vector3d> inner(nn);
+  for(std::size_t n = 0; n < nn; ++n) {
+    const double l = node_normal[n].norm();
+    if(!(l > 0.) || !(depth[n] < infinity))
+      throw Invalid_input_error("invalid_layout", "node " + std::to_string(n) + " has no surface normal to pad along");
+    inner[n] = outer[n] - depth[n] * node_normal[n] / l;
+  }
+
+  Padded_layout<Point_3> r;
+  Layout& L = r.layout;
+  L.layout_class = layout.layout_class;
+  L.genus = layout.genus;
+  L.boundary_loops = layout.boundary_loops;
+  L.number_of_pants = layout.number_of_pants;
+  L.mesh = layout.mesh; // for the distance of the slabs' tops to the surface
+  Patch_grids& G = r.samples;
+  G.segments = N;
+
+  // Nodes: outer 0..nn-1, inner nn..2nn-1.
+  L.nodes = layout.nodes;
+  L.nodes.insert(L.nodes.end(), layout.nodes.begin(), layout.nodes.end());
+
+  // Arcs: the layout's (0..na-1), inner (na + a), radial n -> n' (2na + n).
+  L.arcs = layout.arcs;
+  G.arc_samples = samples.arc_samples;
+  for(std::size_t a = 0; a < na; ++a) {
+    const auto& arc = layout.arcs[a];
+    typename Layout::Arc in;
+    in.nodes = {{nn + arc.nodes[0], nn + arc.nodes[1]}};
+    L.arcs.push_back(in);
+    // Each sample moves by the blend of its arc's end offsets, rescaled to the blended depth:
+    // a straight arc with parallel end offsets stays straight (a flat face stays flat), a
+    // circle with radial ones stays a circle. (Moving each sample along its own normal would
+    // offset an edge's middle deeper than its ends on a box, and the core's edges would
+    // turn reflex; the plain blend shortens rotating offsets and pushes the core's
+    // cross-sections towards 180-degree corners.)
+    const Eigen::Vector3d o0 = inner[arc.nodes[0]] - outer[arc.nodes[0]], o1 = inner[arc.nodes[1]] - outer[arc.nodes[1]];
+    std::vector<Eigen::Vector3d> s(samples.arc_samples[a]);
+    for(int k = 1; k < N; ++k) {
+      const double t = double(k) / N;
+      const Eigen::Vector3d blend = (1. - t) * o0 + t * o1;
+      const double l = blend.norm(), depth = (1. - t) * o0.norm() + t * o1.norm();
+      if(l > 0.) s[std::size_t(k)] += (depth / l) * blend;
+    }
+    s.front() = inner[arc.nodes[0]];
+    s.back() = inner[arc.nodes[1]];
+    G.arc_samples.push_back(std::move(s));
+  }
+  for(std::size_t n = 0; n < nn; ++n) {
+    typename Layout::Arc radial;
+    radial.nodes = {{n, nn + n}};
+    L.arcs.push_back(radial);
+    std::vector<Eigen::Vector3d> s(std::size_t(N + 1));
+    for(int k = 0; k <= N; ++k) s[std::size_t(k)] = outer[n] + (double(k) / N) * (inner[n] - outer[n]);
+    s.front() = outer[n];
+    s.back() = inner[n];
+    G.arc_samples.push_back(std::move(s));
+  }
+
+  // Patches: the layout's (0..np-1, only the SURFACE ones stay in use), inner (np + p),
+  // walls (2np + a). Inner and wall grids: the Coons patches of their border samples. Not
+  // harmonic: a uniform grid Laplacian treats a long thin wall as a square and pulls its
+  // middle towards the chord, out of the layer.
+  auto fill = [&](const typename Layout::Patch& pa) {
+    Point_grid g(N + 1, N + 1);
+    internal::set_patch_border(g, N, L, pa, G.arc_samples);
+    internal::coons_grid_interior(g, N);
+    G.grids.push_back(std::move(g));
+  };
+  L.patches = layout.patches;
+  G.grids = samples.grids;
+  for(std::size_t p = 0; p < np; ++p) {
+    const auto& pa = layout.patches[p];
+    typename Layout::Patch in;
+    in.kind = pa.kind == Layout::CAP ? Layout::CAP : Layout::INTERFACE;
+    for(int i = 0; i < 4; ++i) {
+      in.corners[std::size_t(i)] = nn + pa.corners[std::size_t(i)];
+      in.arcs[std::size_t(i)] = na + pa.arcs[std::size_t(i)];
+    }
+    L.patches.push_back(in);
+    fill(in);
+  }
+  for(std::size_t a = 0; a < na; ++a) {
+    const std::size_t n0 = layout.arcs[a].nodes[0], n1 = layout.arcs[a].nodes[1];
+    typename Layout::Patch wall;
+    // Between two surface patches the wall lies inside; beside a cap it continues the cap.
+    wall.kind = surface_sides[a] >= 2 ? Layout::INTERFACE : Layout::CAP;
+    wall.corners = {{n0, n1, nn + n1, nn + n0}};
+    wall.arcs = {{a, 2 * na + n1, na + a, 2 * na + n0}};
+    L.patches.push_back(wall);
+    fill(wall);
+  }
+  G.flipped_triangles = samples.flipped_triangles;
+  G.flipped_triangles.resize(L.patches.size(), 0);
+  G.unlocated_points = samples.unlocated_points;
+  G.unlocated_points.resize(L.patches.size(), 0);
+
+  // Cuboids: the cores, then one slab per SURFACE patch with (u, v) along the patch's grid
+  // and w from p' (w = 0) to p (w = 1); u x v points out, so the slab is right-handed.
+  for(std::size_t c = 0; c < layout.cuboids.size(); ++c) {
+    typename Layout::Cuboid core = layout.cuboids[c];
+    for(auto& n : core.nodes) n += nn;
+    for(auto& p : core.patches) p += np;
+    L.cuboids.push_back(core);
+    r.core_of.push_back(long(c));
+    r.slab_of.push_back(-1);
+  }
+  for(std::size_t p = 0; p < np; ++p) {
+    const auto& pa = layout.patches[p];
+    if(pa.kind != Layout::SURFACE) continue;
+    typename Layout::Cuboid slab;
+    // Corner (i, j) of the square is patch corner 0, 1, 3, 2 for (0,0), (1,0), (0,1), (1,1).
+    const std::array<std::size_t, 4> at{{pa.corners[0], pa.corners[1], pa.corners[3], pa.corners[2]}};
+    for(int q = 0; q < 4; ++q) {
+      slab.nodes[std::size_t(q)] = nn + at[std::size_t(q)];
+      slab.nodes[std::size_t(q + 4)] = at[std::size_t(q)];
+    }
+    slab.patches = {{2 * np + pa.arcs[3], 2 * np + pa.arcs[1], 2 * np + pa.arcs[0], 2 * np + pa.arcs[2], np + p, p}};
+    L.cuboids.push_back(slab);
+    r.core_of.push_back(-1);
+    r.slab_of.push_back(long(p));
+  }
+  return r;
+}
+
+} // namespace Polycube_IGA
+} // namespace CGAL
+
+#endif // CGAL_POLYCUBE_IGA_LAYOUT_PADDING_H
