@@ -13,9 +13,9 @@
 //
 //   * every node n gets an inner node n' = n - d_n N_n (N_n the outward unit normal averaged
 //     over the surface patches at n, d_n = thickness x the shortest arc at n);
-//   * every arc a gets an inner arc a' (its samples moved along the blend of its two ends'
-//     offsets, by the blended depth: straight arcs and flat faces stay so, circles stay
-//     circles) and a wall: the quad between a and a', closed by the straight radial
+//   * every arc a gets an inner arc a' (the chord of its inner nodes plus half the arc's
+//     deviation from its own chord: straight arcs and flat faces stay so, round ones get
+//     half as round) and a wall: the quad between a and a', closed by the straight radial
 //     segments n -> n';
 //   * every patch p gets an inner patch p' spanned by the inner arcs of its sides (discrete
 //     Coons + harmonic grid, like every interior patch);
@@ -179,19 +179,18 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
     typename Layout::Arc in;
     in.nodes = {{nn + arc.nodes[0], nn + arc.nodes[1]}};
     L.arcs.push_back(in);
-    // Each sample moves by the blend of its arc's end offsets, rescaled to the blended depth:
-    // a straight arc with parallel end offsets stays straight (a flat face stays flat), a
-    // circle with radial ones stays a circle. (Moving each sample along its own normal would
-    // offset an edge's middle deeper than its ends on a box, and the core's edges would
-    // turn reflex; the plain blend shortens rotating offsets and pushes the core's
-    // cross-sections towards 180-degree corners.)
-    const Eigen::Vector3d o0 = inner[arc.nodes[0]] - outer[arc.nodes[0]], o1 = inner[arc.nodes[1]] - outer[arc.nodes[1]];
+    // The inner arc is the chord of its inner nodes plus half the outer arc's deviation from
+    // its own chord: straight arcs stay straight (a flat face stays flat), and a round
+    // cross-section's inner arcs are half as round, so the core gets real corners there.
+    // (Offsetting each sample along its normal makes a box's core edges reflex; keeping the
+    // full curvature, as an offset circle does, leaves the core's cross-section corners at
+    // about 180 degrees: the torus turned invalid on a finer mesh of the same shape.)
     std::vector<Eigen::Vector3d> s(samples.arc_samples[a]);
     for(int k = 1; k < N; ++k) {
       const double t = double(k) / N;
-      const Eigen::Vector3d blend = (1. - t) * o0 + t * o1;
-      const double l = blend.norm(), depth = (1. - t) * o0.norm() + t * o1.norm();
-      if(l > 0.) s[std::size_t(k)] += (depth / l) * blend;
+      const Eigen::Vector3d chord_out = (1. - t) * outer[arc.nodes[0]] + t * outer[arc.nodes[1]];
+      const Eigen::Vector3d chord_in = (1. - t) * inner[arc.nodes[0]] + t * inner[arc.nodes[1]];
+      s[std::size_t(k)] = chord_in + 0.5 * (samples.arc_samples[a][std::size_t(k)] - chord_out);
     }
     s.front() = inner[arc.nodes[0]];
     s.back() = inner[arc.nodes[1]];
