@@ -365,6 +365,14 @@ private:
       }
       return side;
     };
+    auto split = [&](const std::vector<int>& side) {
+      std::vector<bool> cut(num_edges(m), false);
+      for(auto e : edges(m)) {
+        const auto h = halfedge(e, m);
+        cut[e] = side[face(h, m)] != side[face(opposite(h, m), m)];
+      }
+      return cut_into_pieces(m, cut);
+    };
     const std::size_t nv = num_vertices(m);
     std::vector<int> face_side = sides_of(std::vector<double>(nv, 0.));
     std::vector<double> zigzag(nv, 0.);
@@ -372,14 +380,8 @@ private:
     bool zigzag_cut = false;
     {
       std::vector<double> belt_position(nv, -1.);
-      // Bisector vertices: those on side 0 with a neighbour on side 1, in loop order by a
-      // walk along the cut of the plain split.
-      std::vector<bool> cut0(num_edges(m), false);
-      for(auto e : edges(m)) {
-        const auto h = halfedge(e, m);
-        cut0[e] = face_side[face(h, m)] != face_side[face(opposite(h, m), m)];
-      }
-      std::vector<Mesh> halves = cut_into_pieces(m, cut0);
+      // The bisector, in loop order: the border of one half of the plain split.
+      std::vector<Mesh> halves = split(face_side);
       if(halves.size() == 2) {
         const std::vector<V> loop = border_loop(halves[0]);
         const std::vector<std::size_t> par = vertex_parents(halves[0]);
@@ -409,14 +411,6 @@ private:
         }
       }
     }
-    auto split = [&](const std::vector<int>& side) {
-      std::vector<bool> cut(num_edges(m), false);
-      for(auto e : edges(m)) {
-        const auto h = halfedge(e, m);
-        cut[e] = side[face(h, m)] != side[face(opposite(h, m), m)];
-      }
-      return cut_into_pieces(m, cut);
-    };
     std::vector<Mesh> pieces = split(face_side);
     if(zigzag_cut && pieces.size() != 2) { // the zigzag did not leave two disks: the plain cut
       zigzag_cut = false;

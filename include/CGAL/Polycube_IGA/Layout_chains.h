@@ -93,6 +93,12 @@ Chained_layout<Point_3> split_long_cuboids(const Polycube_layout<Point_3>& layou
     return none;
   };
   auto is_surface = [&](std::size_t p) { return layout.patches[p].kind == Layout::SURFACE; };
+  // The long arc of cuboid corner x (bit d clear) along axis d: in the side of axis (d+1)%3
+  // at x's bit, which holds both of its nodes.
+  auto long_arc = [&](const typename Layout::Cuboid& cu, int d, int x) {
+    const int e = (d + 1) % 3;
+    return arc_between(cu.patches[std::size_t(2 * e + ((x >> e) & 1))], cu.nodes[std::size_t(x)], cu.nodes[std::size_t(x | (1 << d))]);
+  };
   std::vector<int> arc_users(na, 0);
   for(const auto& pa : layout.patches)
     for(std::size_t a : pa.arcs) ++arc_users[a];
@@ -111,9 +117,7 @@ Chained_layout<Point_3> split_long_cuboids(const Polycube_layout<Point_3>& layou
       bool ok = true;
       for(int x = 0; x < 8; ++x) {
         if(x & (1 << d)) continue;
-        const std::size_t n0 = cu.nodes[std::size_t(x)], n1 = cu.nodes[std::size_t(x | (1 << d))];
-        const int e = (d + 1) % 3; // a side containing this long edge: axis e, at x's bit e
-        const std::size_t a = arc_between(cu.patches[std::size_t(2 * e + ((x >> e) & 1))], n0, n1);
+        const std::size_t a = long_arc(cu, d, x);
         // A long arc must belong to the tube's two sides only, or the split would not conform.
         if(a == none || arc_users[a] != 2) { ok = false; break; }
         along += arc_length[a] / 4.;
@@ -197,8 +201,7 @@ Chained_layout<Point_3> split_long_cuboids(const Polycube_layout<Point_3>& layou
     for(int x = 0; x < 8; ++x) {
       if(x & (1 << d)) continue;
       const std::size_t n0 = cu.nodes[std::size_t(x)], n1 = cu.nodes[std::size_t(x | (1 << d))];
-      const int e = (d + 1) % 3;
-      const std::size_t a = arc_between(cu.patches[std::size_t(2 * e + ((x >> e) & 1))], n0, n1);
+      const std::size_t a = long_arc(cu, d, x);
       const auto& arc = layout.arcs[a];
       std::vector<Eigen::Vector3d> pts;
       for(auto v : arc.vertices) pts.push_back(internal::to_eigen_point(layout.mesh.point(v)));
