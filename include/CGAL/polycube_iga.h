@@ -51,7 +51,8 @@ struct Trivariate_model
 /// Runs the whole chain. `progress`, when set, is told the name of each stage as it starts.
 /// Named parameters: those of Surface_topology, Pants_decomposition, Cuboid_decomposition
 /// and layout_volume() (grid_resolution, spline_degree, number_of_spans, boundary_layer
-/// (default 0.25 here; 0 for one volume patch per cuboid), ...).
+/// (default 0.25 here; 0 for one volume patch per cuboid), maximum_cuboid_aspect (2 here),
+/// untangle_volume (true here), ...).
 /// Throws the stages' errors; an invalid layout becomes Internal_error("invalid_layout").
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
 auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values(),
@@ -84,11 +85,21 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   volume_defaults.boundary_layer = 0.25;
   // Long tubes (pants arms) as chains of cube-like cuboids (Layout_chains.h).
   volume_defaults.maximum_cuboid_aspect = 2.;
+  // Inner control points moved where det J is poor or negative (Volume_untangling.h).
+  volume_defaults.untangle = true;
   stage("volume construction", [&] { model.volume = layout_volume(model.layout, np, volume_defaults); });
   for(std::size_t p = 0; p < model.volume.samples.flipped_triangles.size(); ++p)
     if(model.volume.samples.flipped_triangles[p] > 0)
       model.warnings.push_back("patch " + std::to_string(p) + ": " + std::to_string(model.volume.samples.flipped_triangles[p]) +
                                " degenerate or flipped triangles in its map to the square");
+  const Volume_untangling_result& u = model.volume.untangling;
+  if(u.skipped)
+    model.warnings.push_back("untangling skipped: " + std::to_string(u.patches.size()) +
+                             " patches would be optimised, more than Volume_untangling_options::maximum_patches");
+  else if(!u.patches.empty() && !u.positive_at_samples)
+    model.warnings.push_back("untangling left a negative det J (smallest relative det " +
+                             std::to_string(u.min_relative_determinant_after) + ", was " +
+                             std::to_string(u.min_relative_determinant_before) + ")");
   if(model.volume.quality_evaluated)
     for(std::size_t c = 0; c < model.volume.quality.certified.size(); ++c)
       if(!model.volume.quality.certified[c].certified_positive)

@@ -76,6 +76,10 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("degree", V.degree)
       .member("spans", V.spans)
       .member("boundary_layer", !V.slab_of.empty())
+      .member("untangled_patches", V.untangling.skipped ? 0 : V.untangling.patches.size())
+      .member("untangling_skipped", V.untangling.skipped)
+      .member("untangling_min_relative_det_before", V.untangling.min_relative_determinant_before)
+      .member("untangling_min_relative_det_after", V.untangling.min_relative_determinant_after)
       .member("valid", model.is_valid())
       .member("volume_written", written);
     w.key("patch_quality").begin_array();
@@ -118,7 +122,8 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
 
 int run_build(const Arguments& args)
 {
-  Parsed_arguments a(args, {"--merge-duplicates", "--drop-isolated", "--no-self-intersection-test", "--allow-invalid", "--quiet"},
+  Parsed_arguments a(args, {"--merge-duplicates", "--drop-isolated", "--no-self-intersection-test", "--allow-invalid", "--quiet",
+                      "--no-untangle"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
                       "--boundary-layer"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
@@ -139,7 +144,8 @@ int run_build(const Arguments& args)
   in.report.require_valid();
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto model = PI::build_trivariate_model(
-    in.mesh, PI::parameters::grid_resolution(grid).spline_degree(degree).cut_criterion(criterion).boundary_layer(layer),
+    in.mesh, PI::parameters::grid_resolution(grid).spline_degree(degree).cut_criterion(criterion).boundary_layer(layer)
+      .untangle_volume(!a.has("--no-untangle")),
     progress);
 
   const bool write_volume = model.is_valid() || a.has("--allow-invalid");
@@ -171,7 +177,7 @@ Register_command build_command("build", {
   "the whole chain: mesh -> polycube layout -> multipatch B-spline volume (G+Smo XML)",
   "usage: polycube_iga build MESH -o OUT.xml [--vtu OUT.vtu] [--layout-vtu L.vtu] [--layout-json L.json]\n"
   "                          [--report R.json] [--grid N] [--degree P] [--criterion length|minima|symmetry]\n"
-  "                          [--boundary-layer T]\n"
+  "                          [--boundary-layer T] [--no-untangle]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
   "  --layout-vtu L    the polycube layout on the surface: patches, arcs, nodes\n"
@@ -181,6 +187,8 @@ Register_command build_command("build", {
   "  --grid N          samples per patch side (default 16)   --degree P  spline degree (default 3)\n"
   "  --boundary-layer T  depth of the layer of slabs under the surface, as a fraction of the\n"
   "                    shortest arc at each node (default 0.25; 0: one patch per cuboid)\n"
+  "  --no-untangle     keep the constructed inner control points; by default those of patches\n"
+  "                    with poor or negative det J are moved to untangle them (surface kept)\n"
   "  --allow-invalid   write the volume even if some det J is not certified positive\n"
   "  exit 1 with nonpositive_jacobian when the volume is not certified valid (nothing written)\n",
   run_build});

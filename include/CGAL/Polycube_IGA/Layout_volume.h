@@ -28,6 +28,7 @@
 #include <CGAL/Polycube_IGA/Multipatch_volume.h>
 #include <CGAL/Polycube_IGA/Patch_sampling.h>
 #include <CGAL/Polycube_IGA/Quality.h>
+#include <CGAL/Polycube_IGA/Volume_untangling.h>
 
 #include <algorithm>
 #include <array>
@@ -61,6 +62,12 @@ struct Layout_volume_options
   /// (Layout_chains.h) before the volume is built; 0 (the default here) keeps the layout's
   /// cuboids. build_trivariate_model() uses 2.
   double maximum_cuboid_aspect = 0.;
+  /// Move the free control points of patches with poor or negative Jacobians
+  /// (Volume_untangling.h); the boundary sides stay as fitted. Off by default: it costs
+  /// seconds to minutes on large invalid models and cannot repair a layout whose surface
+  /// patches themselves have folded or reflex corners.
+  bool untangle = false;
+  Volume_untangling_options untangling;
   bool evaluate_quality = true;        ///< Jacobians, interface conformity, boundary distance
   int quality_samples_per_span = 5;    ///< Jacobian and conformity sampling
   int distance_samples_per_direction = 32; ///< per boundary side, for the Hausdorff distance
@@ -77,6 +84,7 @@ struct Layout_volume_result
   /// the core of, or the layout's SURFACE patch its slab lies under (-1 otherwise). Empty
   /// when neither is used (then patch c is cuboid c).
   std::vector<long> core_of, slab_of;
+  Volume_untangling_result untangling; ///< what untangle_volume() did (if asked)
   /// Per cuboid: fitted with u reversed because its layout frame is left-handed.
   std::vector<bool> mirrored;
   /// Per cuboid: side s (1..6) of the volume patch is side layout_side[c][s-1] of the layout
@@ -347,6 +355,7 @@ Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout, Patch
   for(std::size_t c = 0; c < layout.cuboids.size(); ++c)
     for(int s = 1; s <= 6; ++s)
       if(!glued[c][std::size_t(s - 1)]) r.volume.add_boundary({c, s});
+  if(o.untangle) r.untangling = untangle_volume(r.volume, o.untangling);
   const auto t1 = Clock::now();
   r.fitting_seconds = std::chrono::duration<double>(t1 - t0).count();
 
@@ -435,8 +444,8 @@ Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout, const
 /*!
  * Named-parameter form: `grid_resolution` (N, default 16), `smooth_interior_patches`
  * (true), `spline_degree` (3), `number_of_spans` (max(1, N/4)), `stretching_weight` (0),
- * `bending_weight` (1e-6), `data_weight` (1), `boundary_layer` (0: none) and
- * `maximum_cuboid_aspect` (0: no chains)
+ * `bending_weight` (1e-6), `data_weight` (1), `boundary_layer` (0: none),
+ * `maximum_cuboid_aspect` (0: no chains) and `untangle_volume` (false)
  * override the fields of `base`.
  * Example: `layout_volume(layout, parameters::grid_resolution(32).spline_degree(2))`.
  */
@@ -455,6 +464,7 @@ Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout,
   base.data_weight = option(np, internal_np::data_weight, base.data_weight);
   base.boundary_layer = option(np, internal_np::boundary_layer, base.boundary_layer);
   base.maximum_cuboid_aspect = option(np, internal_np::maximum_cuboid_aspect, base.maximum_cuboid_aspect);
+  base.untangle = option(np, internal_np::untangle_volume, base.untangle);
   return layout_volume(layout, base);
 }
 

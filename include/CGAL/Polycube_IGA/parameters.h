@@ -46,7 +46,8 @@ namespace Polycube_IGA {
   X(smooth_interior_patches_t, smooth_interior_patches)                             \
   /* volume */                                                                      \
   X(boundary_layer_t, boundary_layer)                                               \
-  X(maximum_cuboid_aspect_t, maximum_cuboid_aspect)
+  X(maximum_cuboid_aspect_t, maximum_cuboid_aspect)                                 \
+  X(untangle_volume_t, untangle_volume)
 
 namespace internal_np {
 #define CGAL_POLYCUBE_IGA_DECLARE_TAG(TAG, NAME) enum TAG { NAME };

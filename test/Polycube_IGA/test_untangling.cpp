@@ -1,0 +1,187 @@
+// Volume_untangling.h: folded volumes are repaired by moving free control points only;
+// boundary sides stay bit-identical, shared interface points move together, valid models
+// are left alone.
+
+#include <CGAL/Polycube_IGA/Multipatch_volume.h>
+#include <CGAL/Polycube_IGA/Quality.h>
+#include <CGAL/Polycube_IGA/Volume_untangling.h>
+#include <CGAL/Polycube_IGA/internal/lbfgs.h>
+
+#include <catch2/catch.hpp>
+
+#include <vector>
+
+namespace PI = CGAL::Polycube_IGA;
+
+namespace {
+
+// Identity map of the box [x0, x0 + 1] x [0, 1]^2: degree 3, 2 spans, control points at the
+// Greville abscissae (5 x 5 x 5).
+PI::Tensor_bspline_volume box(double x0)
+{
+  const PI::Knot_vector kv = PI::Knot_vector::uniform(3, 2);
+  const int n = kv.number_of_basis_functions();
+  std::vector<Eigen::Vector3d> P;
+  for(int k = 0; k < n; ++k)
+    for(int j = 0; j < n; ++j)
+      for(int i = 0; i < n; ++i) P.push_back(Eigen::Vector3d(x0 + kv.greville(i), kv.greville(j), kv.greville(k)));
+  return PI::Tensor_bspline_volume({{kv, kv, kv}}, std::move(P));
+}
+
+// Pushes the control points (i, j, k), j and k in 1..3 (or k = 4 only with `on_w1`), along
+// x: past their neighbours, the map folds.
+void fold(PI::Tensor_bspline_volume& v, int i, double dx, bool on_w1 = false)
+{
+  for(int k = on_w1 ? 4 : 1; k <= (on_w1 ? 4 : 3); ++k)
+    for(int j = 1; j <= 3; ++j) v.control_point({{i, j, k}}).x() += dx;
+}
+
+void add_all_boundaries(PI::Multipatch_volume& mv, std::size_t p, const std::vector<int>& except = {})
+{
+  for(int s = 1; s <= 6; ++s)
+    if(std::find(except.begin(), except.end(), s) == except.end()) mv.add_boundary({p, s});
+}
+
+bool boundary_points_equal(const PI::Tensor_bspline_volume& a, const PI::Tensor_bspline_volume& b, int side)
+{
+  bool same = true;
+  PI::internal::for_each_side_point(a, side, [&](const std::array<int, 3>& i) {
+    same = same && a.control_point(i) == b.control_point(i);
+  });
+  return same;
+}
+
+} // namespace
+
+TEST_CASE("L-BFGS minimises the Rosenbrock function", "[untangling]")
+{
+  auto rosenbrock = [](const Eigen::VectorXd& x, Eigen::VectorXd& g) {
+    g.resize(2);
+    g[0] = -2. * (1. - x[0]) - 400. * x[0] * (x[1] - x[0] * x[0]);
+    g[1] = 200. * (x[1] - x[0] * x[0]);
+    return (1. - x[0]) * (1. - x[0]) + 100. * (x[1] - x[0] * x[0]) * (x[1] - x[0] * x[0]);
+  };
+  Eigen::VectorXd x(2);
+  x << -1.2, 1.;
+  PI::internal::Lbfgs_options o;
+  o.maximum_iterations = 500;
+  o.relative_decrease = 0.;
+  const auto r = PI::internal::lbfgs_minimize(rosenbrock, x, o);
+  CHECK(r.value < 1e-10);
+  CHECK(std::abs(x[0] - 1.) < 1e-5);
+  CHECK(std::abs(x[1] - 1.) < 1e-5);
+}
+
+TEST_CASE("untangling repairs a folded box and keeps its boundary exactly", "[untangling]")
+{
+  PI::Multipatch_volume mv;
+  PI::Tensor_bspline_volume v = box(0.);
+  fold(v, 1, 0.9); // x = 1/6 + 0.9: beyond the next two planes
+  mv.add_patch(v);
+  add_all_boundaries(mv, 0);
+  REQUIRE(PI::sample_jacobian(mv.patch(0)).min_determinant < 0.);
+  REQUIRE_FALSE(PI::certified_jacobian_bound(mv.patch(0)).certified_positive);
+
+  const PI::Volume_untangling_result r = PI::untangle_volume(mv);
+  REQUIRE(r.patches == std::vector<std::size_t>{0});
+  CHECK(r.free_points == 27); // the 3 x 3 x 3 inner points
+  CHECK(r.min_relative_determinant_before < 0.);
+  CHECK(r.positive_at_samples);
+  CHECK(r.min_relative_determinant_after > 0.);
+  const PI::Jacobian_bound b = PI::certified_jacobian_bound(mv.patch(0));
+  CHECK(b.certified_positive);
+  CHECK(PI::sample_jacobian(mv.patch(0)).min_scaled_jacobian > 0.1);
+  for(int s = 1; s <= 6; ++s) CHECK(boundary_points_equal(mv.patch(0), v, s));
+
+  SECTION("deterministic")
+  {
+    PI::Multipatch_volume again;
+    again.add_patch(v);
+    add_all_boundaries(again, 0);
+    PI::untangle_volume(again);
+    CHECK(again.patch(0).control_points() == mv.patch(0).control_points());
+  }
+}
+
+TEST_CASE("untangling moves a shared interface point on both sides and keeps the interface conforming", "[untangling]")
+{
+  // Two boxes glued along x = 1 (side u1 of patch 0, side u0 of patch 1); the fold sits next
+  // to the interface so that its inner points must move.
+  PI::Multipatch_volume mv;
+  PI::Tensor_bspline_volume a = box(0.), b = box(1.);
+  fold(a, 3, -0.9);
+  mv.add_patch(a);
+  mv.add_patch(b);
+  PI::Patch_interface f;
+  f.first = {0, 2};
+  f.second = {1, 1};
+  // direction map and orientation: the identity (u1 meets u0: different ends, same senses)
+  mv.add_interface(f);
+  add_all_boundaries(mv, 0, {2});
+  add_all_boundaries(mv, 1, {1});
+  REQUIRE(PI::sample_jacobian(mv.patch(0)).min_determinant < 0.);
+
+  const PI::Volume_untangling_result r = PI::untangle_volume(mv);
+  CHECK(r.patches == std::vector<std::size_t>{0, 1}); // the folded patch and its neighbour
+  CHECK(r.free_points == 2 * 27 + 9);                 // inner points of both, plus the 3 x 3 shared ones
+  CHECK(r.positive_at_samples);
+  for(std::size_t p = 0; p < 2; ++p) CHECK(PI::certified_jacobian_bound(mv.patch(p)).certified_positive);
+  // Shared points identical (bitwise) on both sides, and some of them moved.
+  bool moved = false;
+  for(int k = 0; k < 5; ++k)
+    for(int j = 0; j < 5; ++j) {
+      CHECK(mv.patch(0).control_point({{4, j, k}}) == mv.patch(1).control_point({{0, j, k}}));
+      moved = moved || mv.patch(0).control_point({{4, j, k}}) != a.control_point({{4, j, k}});
+    }
+  CHECK(moved);
+  CHECK(PI::check_interface_conformity(mv).max_gap < 1e-12);
+  for(int s : {1, 3, 4, 5, 6}) CHECK(boundary_points_equal(mv.patch(0), a, s));
+  for(int s : {2, 3, 4, 5, 6}) CHECK(boundary_points_equal(mv.patch(1), b, s));
+}
+
+TEST_CASE("untangling leaves a valid model untouched", "[untangling]")
+{
+  PI::Multipatch_volume mv;
+  PI::Tensor_bspline_volume v = box(0.);
+  fold(v, 2, 0.05); // a mild, valid distortion
+  mv.add_patch(v);
+  add_all_boundaries(mv, 0);
+  const PI::Volume_untangling_result r = PI::untangle_volume(mv);
+  CHECK(r.patches.empty());
+  CHECK(r.free_points == 0);
+  CHECK(r.positive_at_samples);
+  CHECK(mv.patch(0).control_points() == v.control_points());
+}
+
+TEST_CASE("untangling cannot move a fixed boundary and says so", "[untangling]")
+{
+  // The fold is on side w1 (a boundary): nothing may move there, so det J stays negative.
+  PI::Multipatch_volume mv;
+  PI::Tensor_bspline_volume v = box(0.);
+  fold(v, 1, 0.9, true);
+  mv.add_patch(v);
+  add_all_boundaries(mv, 0);
+  const PI::Volume_untangling_result r = PI::untangle_volume(mv);
+  CHECK_FALSE(r.positive_at_samples);
+  CHECK(r.min_relative_determinant_after < 0.);
+  CHECK(r.min_relative_determinant_after >= r.min_relative_determinant_before);
+  for(int s = 1; s <= 6; ++s) CHECK(boundary_points_equal(mv.patch(0), v, s));
+}
+
+TEST_CASE("untangling skips models with more patches to optimise than allowed", "[untangling]")
+{
+  PI::Multipatch_volume mv;
+  PI::Tensor_bspline_volume v = box(0.);
+  fold(v, 1, 0.9);
+  mv.add_patch(v);
+  mv.add_patch(v);
+  add_all_boundaries(mv, 0);
+  add_all_boundaries(mv, 1);
+  PI::Volume_untangling_options o;
+  o.maximum_patches = 1;
+  const PI::Volume_untangling_result r = PI::untangle_volume(mv, o);
+  CHECK(r.skipped);
+  CHECK(r.patches == std::vector<std::size_t>{0, 1});
+  CHECK_FALSE(r.positive_at_samples);
+  for(std::size_t p = 0; p < 2; ++p) CHECK(mv.patch(p).control_points() == v.control_points());
+}
