@@ -111,7 +111,8 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .end_object();
     w.key("stage_seconds").begin_object().member("read_and_validate", read_seconds);
     for(const auto& st : model.stage_seconds) w.member(st.first, st.second);
-    w.member("sampling", V.sampling_seconds).member("fitting", V.fitting_seconds).member("quality", V.quality_seconds);
+    w.member("sampling", V.sampling_seconds).member("fitting", V.fitting_seconds).member("untangling", V.untangling_seconds)
+      .member("quality", V.quality_seconds);
     w.end_object();
     w.key("warnings").begin_array();
     for(const auto& s : model.warnings) w.value(s);
