@@ -185,3 +185,15 @@ TEST_CASE("untangling skips models with more patches to optimise than allowed", 
   CHECK_FALSE(r.positive_at_samples);
   for(std::size_t p = 0; p < 2; ++p) CHECK(mv.patch(p).control_points() == v.control_points());
 }
+
+TEST_CASE("the regularised determinant stays positive and accurate for inverted samples", "[untangling]")
+{
+  // chi(D, e) = (D + sqrt(e^2 + D^2)) / 2 ~ e^2 / (4 |D|) for D << 0: the naive sum cancels to 0.
+  const double e = 1e-3, D = -1e6;
+  const double chi = PI::internal::regularised_determinant(D, e);
+  CHECK(chi > 0.);
+  CHECK(chi == Approx(e * e / (4. * -D)).epsilon(1e-9));
+  CHECK(PI::internal::regularised_determinant(2., 0.) == 2.);
+  CHECK(PI::internal::regularised_determinant(0., e) == Approx(e / 2.));
+  CHECK(PI::internal::regularised_determinant(-3., 4.) == Approx((-3. + 5.) / 2.));
+}

@@ -141,6 +141,13 @@ void for_each_jacobian_sample(const Tensor_bspline_volume& v, const std::array<D
       }
 }
 
+/// chi(D, e) = (D + sqrt(e^2 + D^2)) / 2, written without cancellation for D < 0.
+inline double regularised_determinant(double D, double e)
+{
+  const double root = std::sqrt(e * e + D * D);
+  return D >= 0. ? 0.5 * (D + root) : 0.5 * e * e / (root - D);
+}
+
 /// Columns of the cofactor matrix of K: the derivative of det K with respect to K.
 inline Eigen::Matrix3d cofactor(const Eigen::Matrix3d& K)
 {
@@ -333,7 +340,7 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
         mv.patch(c), samples[c], points[c],
         [&](const Eigen::Matrix3d& J, double w, const std::vector<std::size_t>& index, const std::vector<Vector3d>& grad) {
           const Eigen::Matrix3d K = J * Wi;
-          const double D = K.determinant(), root = std::sqrt(eps * eps + D * D), chi = 0.5 * (D + root);
+          const double D = K.determinant(), root = std::sqrt(eps * eps + D * D), chi = internal::regularised_determinant(D, eps);
           const double dchi = chi / root, tr = K.squaredNorm(), c23 = std::cbrt(chi * chi);
           const double shape = tr / (3. * c23), volume = (D * D + 1.) / (2. * chi);
           E += w * ((1. - theta) * shape + theta * volume);
@@ -364,7 +371,7 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
       min_det = measure_min(x);
       const double E = lr.value;
       const double sigma = std::max(1. - E / E_prev, 0.1);
-      const double chi_min = 0.5 * (min_det + std::sqrt(eps * eps + min_det * min_det));
+      const double chi_min = internal::regularised_determinant(min_det, eps);
       const double mu = (1. - sigma) * chi_min;
       const bool settled = std::abs(E_prev - E) <= 1e-5 * std::abs(E);
       eps = min_det < mu ? 2. * std::sqrt(mu * (mu - min_det)) : 1e-9;
