@@ -197,3 +197,42 @@ TEST_CASE("the regularised determinant stays positive and accurate for inverted 
   CHECK(PI::internal::regularised_determinant(0., e) == Approx(e / 2.));
   CHECK(PI::internal::regularised_determinant(-3., 4.) == Approx((-3. + 5.) / 2.));
 }
+
+TEST_CASE("sum-factorised Jacobians match the spline's derivatives and their adjoint is exact", "[untangling]")
+{
+  PI::Tensor_bspline_volume v = box(0.);
+  fold(v, 1, 0.4);
+  fold(v, 3, -0.2);
+  v.control_point({{2, 1, 3}}).z() += 0.3;
+  std::array<PI::internal::Direction_samples, 3> S;
+  for(int d = 0; d < 3; ++d) S[std::size_t(d)] = PI::internal::span_samples_with_ends(v.knot_vector(d), 3);
+  const std::array<int, 3> n = PI::internal::net_size(v);
+  std::vector<Eigen::Matrix3d> J;
+  PI::internal::patch_jacobians(n, S, v.control_points(), J);
+  const std::size_t q = S[0].weight.size();
+  REQUIRE(J.size() == q * q * q);
+  // Samples at span ends and middles: 0, 1/4, 1/2, 3/4, 1 for 2 spans.
+  const std::vector<double> t{0., 0.25, 0.5, 0.75, 1.};
+  REQUIRE(q == t.size());
+  double worst = 0.;
+  for(std::size_t c = 0; c < q; ++c)
+    for(std::size_t b = 0; b < q; ++b)
+      for(std::size_t a = 0; a < q; ++a) {
+        const auto d = v.derivatives({{t[a], t[b], t[c]}}, 1);
+        for(int k = 0; k < 3; ++k) worst = std::max(worst, (J[a + q * (b + q * c)].col(k) - d.first[std::size_t(k)]).norm());
+      }
+  CHECK(worst < 1e-12);
+  // J is linear in P, so sum_s G_s : J_s = sum_i dP_i . P_i for any G.
+  std::vector<Eigen::Matrix3d> G(J.size());
+  double lhs = 0.;
+  for(std::size_t s = 0; s < G.size(); ++s) {
+    for(int r = 0; r < 3; ++r)
+      for(int k = 0; k < 3; ++k) G[s](r, k) = std::sin(double(7 * s + 3 * r + k));
+    lhs += (G[s].array() * J[s].array()).sum();
+  }
+  std::vector<Eigen::Vector3d> dP;
+  PI::internal::patch_jacobians_adjoint(n, S, G, dP);
+  double rhs = 0.;
+  for(std::size_t i = 0; i < dP.size(); ++i) rhs += dP[i].dot(v.control_points()[i]);
+  CHECK(rhs == Approx(lhs).epsilon(1e-12));
+}

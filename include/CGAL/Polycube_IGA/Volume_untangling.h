@@ -13,6 +13,8 @@
 // finite for inverted samples, so L-BFGS can pull them through; e shrinks round by round by
 // their rule until every sample is positive, and the energy then acts as a barrier.
 // Control points shared across interfaces are one unknown, so conformity is kept exactly.
+// Jacobians and their adjoint are evaluated by sum factorisation over the tensor grid of
+// samples (one direction contracted at a time), several times cheaper than per sample.
 
 #ifndef CGAL_POLYCUBE_IGA_VOLUME_UNTANGLING_H
 #define CGAL_POLYCUBE_IGA_VOLUME_UNTANGLING_H
@@ -42,8 +44,8 @@ struct Volume_untangling_options
   /// are optimised, together with their interface neighbours.
   double scaled_jacobian_threshold = 0.05;
   /// Cost guard: with more patches to optimise than this, nothing is done (`skipped`).
-  /// Each L-BFGS iteration costs about (2 spans + 1)^3 samples x (p + 1)^3 per patch:
-  /// about 8 s for the 7 patches of the sphere at the default grid, 74 s for 25.
+  /// Cost grows with the patches optimised: about 3 s for the 7 patches of the sphere at
+  /// the default grid (some 760 L-BFGS iterations).
   std::size_t maximum_patches = 12;
   int maximum_rounds = 12;          ///< epsilon updates
   int iterations_per_round = 100;   ///< L-BFGS iterations per round
@@ -111,34 +113,110 @@ inline Direction_samples span_samples_with_ends(const Knot_vector& kv, int q)
   return direction_samples(kv, t, w);
 }
 
-/// Calls f(J, weight, first index, basis gradients) at every sample of patch v, where the
-/// gradients are listed for the (p0+1)(p1+1)(p2+1) non-zero functions, u fastest.
-template <class F>
-void for_each_jacobian_sample(const Tensor_bspline_volume& v, const std::array<Direction_samples, 3>& S,
-                              const std::vector<Eigen::Vector3d>& points, F&& f)
+/// Jacobians J[s] (columns d/du, d/dv, d/dw) of a patch with control points P at all samples
+/// s = a + q0 (b + q1 c) of the tensor grid S[0] x S[1] x S[2], by sum factorisation (one
+/// direction contracted at a time): O(q n^2 p) work instead of O(q^3 p^3).
+inline void patch_jacobians(const std::array<int, 3>& n, const std::array<Direction_samples, 3>& S,
+                            const std::vector<Eigen::Vector3d>& P, std::vector<Eigen::Matrix3d>& J)
 {
+  using Eigen::Vector3d;
+  const std::size_t q0 = S[0].weight.size(), q1 = S[1].weight.size(), q2 = S[2].weight.size();
   const int P0 = S[0].p + 1, P1 = S[1].p + 1, P2 = S[2].p + 1;
-  const int n0 = v.number_of_control_points(0), n1 = v.number_of_control_points(1);
-  std::vector<Eigen::Vector3d> grad(std::size_t(P0 * P1 * P2));
-  std::vector<std::size_t> index(grad.size());
-  for(std::size_t c = 0; c < S[2].weight.size(); ++c)
-    for(std::size_t b = 0; b < S[1].weight.size(); ++b)
-      for(std::size_t a = 0; a < S[0].weight.size(); ++a) {
-        Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
-        std::size_t l = 0;
-        for(int k = 0; k < P2; ++k)
-          for(int j = 0; j < P1; ++j)
-            for(int i = 0; i < P0; ++i, ++l) {
-              const double Nu = S[0].value[a * std::size_t(P0) + std::size_t(i)], Du = S[0].slope[a * std::size_t(P0) + std::size_t(i)];
-              const double Nv = S[1].value[b * std::size_t(P1) + std::size_t(j)], Dv = S[1].slope[b * std::size_t(P1) + std::size_t(j)];
-              const double Nw = S[2].value[c * std::size_t(P2) + std::size_t(k)], Dw = S[2].slope[c * std::size_t(P2) + std::size_t(k)];
-              grad[l] = Eigen::Vector3d(Du * Nv * Nw, Nu * Dv * Nw, Nu * Nv * Dw);
-              index[l] = std::size_t(S[0].first[a] + i) +
-                         std::size_t(n0) * (std::size_t(S[1].first[b] + j) + std::size_t(n1) * std::size_t(S[2].first[c] + k));
-              J += points[index[l]] * grad[l].transpose();
-            }
-        f(J, S[0].weight[a] * S[1].weight[b] * S[2].weight[c], index, grad);
+  const std::size_t n1 = std::size_t(n[1]), n2 = std::size_t(n[2]), n01 = std::size_t(n[0]) * n1;
+  // u contracted: A[(a, j, k)] = sum_i {N, N'}_u(a, i) P(i, j, k).
+  std::vector<Vector3d> A0(q0 * n1 * n2, Vector3d::Zero()), A1(A0.size(), Vector3d::Zero());
+  for(std::size_t k = 0; k < n2; ++k)
+    for(std::size_t j = 0; j < n1; ++j)
+      for(std::size_t a = 0; a < q0; ++a) {
+        Vector3d s0 = Vector3d::Zero(), s1 = Vector3d::Zero();
+        for(int i = 0; i < P0; ++i) {
+          const Vector3d& x = P[std::size_t(S[0].first[a] + i) + std::size_t(n[0]) * j + n01 * k];
+          s0 += S[0].value[a * std::size_t(P0) + std::size_t(i)] * x;
+          s1 += S[0].slope[a * std::size_t(P0) + std::size_t(i)] * x;
+        }
+        A0[a + q0 * (j + n1 * k)] = s0, A1[a + q0 * (j + n1 * k)] = s1;
       }
+  // v contracted: B00 = N_v A0 (for d/dw), B10 = N_v A1 (d/du), B01 = N'_v A0 (d/dv).
+  std::vector<Vector3d> B00(q0 * q1 * n2), B10(B00.size()), B01(B00.size());
+  for(std::size_t k = 0; k < n2; ++k)
+    for(std::size_t b = 0; b < q1; ++b)
+      for(std::size_t a = 0; a < q0; ++a) {
+        Vector3d s00 = Vector3d::Zero(), s10 = Vector3d::Zero(), s01 = Vector3d::Zero();
+        for(int j = 0; j < P1; ++j) {
+          const std::size_t at = a + q0 * (std::size_t(S[1].first[b] + j) + n1 * k);
+          const double N = S[1].value[b * std::size_t(P1) + std::size_t(j)], D = S[1].slope[b * std::size_t(P1) + std::size_t(j)];
+          s00 += N * A0[at], s10 += N * A1[at], s01 += D * A0[at];
+        }
+        const std::size_t out = a + q0 * (b + q1 * k);
+        B00[out] = s00, B10[out] = s10, B01[out] = s01;
+      }
+  // w contracted.
+  J.assign(q0 * q1 * q2, Eigen::Matrix3d::Zero());
+  for(std::size_t c = 0; c < q2; ++c)
+    for(std::size_t b = 0; b < q1; ++b)
+      for(std::size_t a = 0; a < q0; ++a) {
+        Eigen::Matrix3d& M = J[a + q0 * (b + q1 * c)];
+        for(int k = 0; k < P2; ++k) {
+          const std::size_t at = a + q0 * (b + q1 * std::size_t(S[2].first[c] + k));
+          const double N = S[2].value[c * std::size_t(P2) + std::size_t(k)], D = S[2].slope[c * std::size_t(P2) + std::size_t(k)];
+          M.col(0) += N * B10[at], M.col(1) += N * B01[at], M.col(2) += D * B00[at];
+        }
+      }
+}
+
+/// Adjoint of patch_jacobians(): given G[s] = dE/dJ[s], returns dE/dP for every control
+/// point (the same three contractions in reverse order).
+inline void patch_jacobians_adjoint(const std::array<int, 3>& n, const std::array<Direction_samples, 3>& S,
+                                    const std::vector<Eigen::Matrix3d>& G, std::vector<Eigen::Vector3d>& dP)
+{
+  using Eigen::Vector3d;
+  const std::size_t q0 = S[0].weight.size(), q1 = S[1].weight.size(), q2 = S[2].weight.size();
+  const int P0 = S[0].p + 1, P1 = S[1].p + 1, P2 = S[2].p + 1;
+  const std::size_t n1 = std::size_t(n[1]), n2 = std::size_t(n[2]), n01 = std::size_t(n[0]) * n1;
+  std::vector<Vector3d> B00(q0 * q1 * n2, Vector3d::Zero()), B10(B00.size(), Vector3d::Zero()), B01(B00.size(), Vector3d::Zero());
+  for(std::size_t c = 0; c < q2; ++c)
+    for(std::size_t b = 0; b < q1; ++b)
+      for(std::size_t a = 0; a < q0; ++a) {
+        const Eigen::Matrix3d& M = G[a + q0 * (b + q1 * c)];
+        for(int k = 0; k < P2; ++k) {
+          const std::size_t at = a + q0 * (b + q1 * std::size_t(S[2].first[c] + k));
+          const double N = S[2].value[c * std::size_t(P2) + std::size_t(k)], D = S[2].slope[c * std::size_t(P2) + std::size_t(k)];
+          B10[at] += N * M.col(0), B01[at] += N * M.col(1), B00[at] += D * M.col(2);
+        }
+      }
+  std::vector<Vector3d> A0(q0 * n1 * n2, Vector3d::Zero()), A1(A0.size(), Vector3d::Zero());
+  for(std::size_t k = 0; k < n2; ++k)
+    for(std::size_t b = 0; b < q1; ++b)
+      for(std::size_t a = 0; a < q0; ++a) {
+        const std::size_t from = a + q0 * (b + q1 * k);
+        for(int j = 0; j < P1; ++j) {
+          const std::size_t at = a + q0 * (std::size_t(S[1].first[b] + j) + n1 * k);
+          const double N = S[1].value[b * std::size_t(P1) + std::size_t(j)], D = S[1].slope[b * std::size_t(P1) + std::size_t(j)];
+          A0[at] += N * B00[from] + D * B01[from], A1[at] += N * B10[from];
+        }
+      }
+  dP.assign(n01 * n2, Vector3d::Zero());
+  for(std::size_t k = 0; k < n2; ++k)
+    for(std::size_t j = 0; j < n1; ++j)
+      for(std::size_t a = 0; a < q0; ++a) {
+        const std::size_t from = a + q0 * (j + n1 * k);
+        for(int i = 0; i < P0; ++i)
+          dP[std::size_t(S[0].first[a] + i) + std::size_t(n[0]) * j + n01 * k] +=
+            S[0].value[a * std::size_t(P0) + std::size_t(i)] * A0[from] + S[0].slope[a * std::size_t(P0) + std::size_t(i)] * A1[from];
+      }
+}
+
+/// Control net size of v.
+inline std::array<int, 3> net_size(const Tensor_bspline_volume& v)
+{
+  return {{v.number_of_control_points(0), v.number_of_control_points(1), v.number_of_control_points(2)}};
+}
+
+/// Weight of sample s = a + q0 (b + q1 c).
+inline double sample_weight(const std::array<Direction_samples, 3>& S, std::size_t s)
+{
+  const std::size_t q0 = S[0].weight.size(), q1 = S[1].weight.size();
+  return S[0].weight[s % q0] * S[1].weight[(s / q0) % q1] * S[2].weight[s / (q0 * q1)];
 }
 
 /// chi(D, e) = (D + sqrt(e^2 + D^2)) / 2, written without cancellation for D < 0.
@@ -158,21 +236,16 @@ inline Eigen::Matrix3d cofactor(const Eigen::Matrix3d& K)
   return C;
 }
 
-/// Minimum scaled Jacobian of v at its Gauss points and span corners.
-inline double sampled_scaled_jacobian(const Tensor_bspline_volume& v, const std::array<Direction_samples, 3>& samples)
+/// Minimum scaled Jacobian of v at the samples S.
+inline double sampled_scaled_jacobian(const Tensor_bspline_volume& v, const std::array<Direction_samples, 3>& S)
 {
+  std::vector<Eigen::Matrix3d> J;
+  patch_jacobians(net_size(v), S, v.control_points(), J);
   double m = std::numeric_limits<double>::infinity();
-  auto scaled = [&](const Eigen::Matrix3d& J, double, const std::vector<std::size_t>&, const std::vector<Eigen::Vector3d>&) {
-    const double len = J.col(0).norm() * J.col(1).norm() * J.col(2).norm();
-    m = std::min(m, len > 0. ? J.determinant() / len : -1.);
-  };
-  for_each_jacobian_sample(v, samples, v.control_points(), scaled);
-  std::array<Direction_samples, 3> corners;
-  for(int d = 0; d < 3; ++d) {
-    const std::vector<double> b = v.knot_vector(d).breaks();
-    corners[std::size_t(d)] = direction_samples(v.knot_vector(d), b, std::vector<double>(b.size(), 1.));
+  for(const Eigen::Matrix3d& M : J) {
+    const double len = M.col(0).norm() * M.col(1).norm() * M.col(2).norm();
+    m = std::min(m, len > 0. ? M.determinant() / len : -1.);
   }
-  for_each_jacobian_sample(v, corners, v.control_points(), scaled);
   return m;
 }
 
@@ -297,9 +370,12 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
   for(std::size_t c : r.patches) {
     Eigen::Matrix3d W = Eigen::Matrix3d::Zero();
     double total = 0.;
-    internal::for_each_jacobian_sample(mv.patch(c), samples[c], mv.patch(c).control_points(),
-                                       [&](const Eigen::Matrix3d& J, double w, const std::vector<std::size_t>&,
-                                           const std::vector<Vector3d>&) { W += w * J, total += w; });
+    std::vector<Eigen::Matrix3d> J;
+    internal::patch_jacobians(internal::net_size(mv.patch(c)), samples[c], mv.patch(c).control_points(), J);
+    for(std::size_t s = 0; s < J.size(); ++s) {
+      const double w = internal::sample_weight(samples[c], s);
+      W += w * J[s], total += w;
+    }
     W /= std::max(total, 1e-300);
     const double scale = std::max(W.norm() / std::sqrt(3.), 1e-300);
     if(!(W.determinant() > 1e-3 * scale * scale * scale)) W = scale * Eigen::Matrix3d::Identity();
@@ -321,38 +397,43 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
   auto measure_min = [&](const Eigen::VectorXd& y) {
     load(y);
     double m = std::numeric_limits<double>::infinity();
-    for(std::size_t c : r.patches)
-      internal::for_each_jacobian_sample(mv.patch(c), samples[c], points[c],
-                                         [&](const Eigen::Matrix3d& J, double, const std::vector<std::size_t>&,
-                                             const std::vector<Vector3d>&) { m = std::min(m, (J * Winv[c]).determinant()); });
+    std::vector<Eigen::Matrix3d> J;
+    for(std::size_t c : r.patches) {
+      internal::patch_jacobians(internal::net_size(mv.patch(c)), samples[c], points[c], J);
+      for(const Eigen::Matrix3d& M : J) m = std::min(m, (M * Winv[c]).determinant());
+    }
     return m;
   };
   const double theta = o.volume_weight;
   double eps = 1.;
+  std::vector<Eigen::Matrix3d> J, G;
+  std::vector<Vector3d> dP;
   auto energy = [&](const Eigen::VectorXd& y, Eigen::VectorXd& g) {
     load(y);
     g.setZero(y.size());
     double E = 0.;
     for(std::size_t c : r.patches) {
-      const std::size_t base = offset[c];
+      const std::array<int, 3> n = internal::net_size(mv.patch(c));
       const Eigen::Matrix3d& Wi = Winv[c];
-      internal::for_each_jacobian_sample(
-        mv.patch(c), samples[c], points[c],
-        [&](const Eigen::Matrix3d& J, double w, const std::vector<std::size_t>& index, const std::vector<Vector3d>& grad) {
-          const Eigen::Matrix3d K = J * Wi;
-          const double D = K.determinant(), root = std::sqrt(eps * eps + D * D), chi = internal::regularised_determinant(D, eps);
-          const double dchi = chi / root, tr = K.squaredNorm(), c23 = std::cbrt(chi * chi);
-          const double shape = tr / (3. * c23), volume = (D * D + 1.) / (2. * chi);
-          E += w * ((1. - theta) * shape + theta * volume);
-          const Eigen::Matrix3d C = internal::cofactor(K);
-          const Eigen::Matrix3d GK = (1. - theta) * (2. / (3. * c23) * K - (2. / 9.) * tr / (c23 * chi) * dchi * C) +
-                                     theta * (D / chi - (D * D + 1.) * dchi / (2. * chi * chi)) * C;
-          const Eigen::Matrix3d GJ = w * GK * Wi.transpose();
-          for(std::size_t l = 0; l < index.size(); ++l) {
-            const long u = unknown[base + index[l]];
-            if(u >= 0) g.segment<3>(Eigen::Index(3 * u)) += GJ * grad[l];
-          }
-        });
+      internal::patch_jacobians(n, samples[c], points[c], J);
+      G.resize(J.size());
+      for(std::size_t s = 0; s < J.size(); ++s) {
+        const double w = internal::sample_weight(samples[c], s);
+        const Eigen::Matrix3d K = J[s] * Wi;
+        const double D = K.determinant(), root = std::sqrt(eps * eps + D * D), chi = internal::regularised_determinant(D, eps);
+        const double dchi = chi / root, tr = K.squaredNorm(), c23 = std::cbrt(chi * chi);
+        const double shape = tr / (3. * c23), volume = (D * D + 1.) / (2. * chi);
+        E += w * ((1. - theta) * shape + theta * volume);
+        const Eigen::Matrix3d C = internal::cofactor(K);
+        const Eigen::Matrix3d GK = (1. - theta) * (2. / (3. * c23) * K - (2. / 9.) * tr / (c23 * chi) * dchi * C) +
+                                   theta * (D / chi - (D * D + 1.) * dchi / (2. * chi * chi)) * C;
+        G[s] = w * GK * Wi.transpose(); // dE/dJ, since K = J W^-1
+      }
+      internal::patch_jacobians_adjoint(n, samples[c], G, dP);
+      for(std::size_t k = 0; k < dP.size(); ++k) {
+        const long u = unknown[offset[c] + k];
+        if(u >= 0) g.segment<3>(Eigen::Index(3 * u)) += dP[k];
+      }
     }
     return E;
   };
