@@ -96,6 +96,8 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   if(u.skipped)
     model.warnings.push_back("untangling skipped: " + std::to_string(u.patches.size()) +
                              " patches would be optimised, more than Volume_untangling_options::maximum_patches");
+  else if(u.reverted)
+    model.warnings.push_back("untangling discarded: it did not raise the smallest det J or cost a patch its certificate");
   else if(!u.patches.empty() && !u.positive_at_samples)
     model.warnings.push_back("untangling left a negative det J (smallest relative det " +
                              std::to_string(u.min_relative_determinant_after) + ", was " +

@@ -85,6 +85,7 @@ TEST_CASE("untangling repairs a folded box and keeps its boundary exactly", "[un
   const PI::Volume_untangling_result r = PI::untangle_volume(mv);
   REQUIRE(r.patches == std::vector<std::size_t>{0});
   CHECK(r.free_points == 27); // the 3 x 3 x 3 inner points
+  CHECK_FALSE(r.reverted);
   CHECK(r.min_relative_determinant_before < 0.);
   CHECK(r.positive_at_samples);
   CHECK(r.min_relative_determinant_after > 0.);
@@ -124,6 +125,7 @@ TEST_CASE("untangling moves a shared interface point on both sides and keeps the
   const PI::Volume_untangling_result r = PI::untangle_volume(mv);
   CHECK(r.patches == std::vector<std::size_t>{0, 1}); // the folded patch and its neighbour
   CHECK(r.free_points == 2 * 27 + 9);                 // inner points of both, plus the 3 x 3 shared ones
+  CHECK_FALSE(r.reverted); // the neighbour, certified before, still is
   CHECK(r.positive_at_samples);
   for(std::size_t p = 0; p < 2; ++p) CHECK(PI::certified_jacobian_bound(mv.patch(p)).certified_positive);
   // Shared points identical (bitwise) on both sides, and some of them moved.

@@ -78,6 +78,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("boundary_layer", !V.slab_of.empty())
       .member("untangled_patches", V.untangling.skipped ? 0 : V.untangling.patches.size())
       .member("untangling_skipped", V.untangling.skipped)
+      .member("untangling_reverted", V.untangling.reverted)
       .member("untangling_min_relative_det_before", V.untangling.min_relative_determinant_before)
       .member("untangling_min_relative_det_after", V.untangling.min_relative_determinant_after)
       .member("valid", model.is_valid())

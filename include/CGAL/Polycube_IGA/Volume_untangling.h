@@ -21,6 +21,7 @@
 
 #include <CGAL/Polycube_IGA/Bspline_basis.h>
 #include <CGAL/Polycube_IGA/Multipatch_volume.h>
+#include <CGAL/Polycube_IGA/Quality.h>
 #include <CGAL/Polycube_IGA/internal/lbfgs.h>
 
 #include <Eigen/Dense>
@@ -61,6 +62,9 @@ struct Volume_untangling_result
   double min_relative_determinant_before = 0., min_relative_determinant_after = 0.;
   bool positive_at_samples = false; ///< every sample has det J > 0 afterwards
   bool skipped = false; ///< more patches needed it than Volume_untangling_options::maximum_patches
+  /// The optimised points were discarded: the smallest sampled det J did not improve, or a
+  /// patch whose det J was certified positive lost its certificate.
+  bool reverted = false;
 };
 
 namespace internal {
@@ -272,8 +276,9 @@ void for_each_side_point(const Tensor_bspline_volume& v, int s, F&& f)
  * sides, points of other patches and rational patches stay fixed; a point shared by an
  * interface moves on both sides at once, so interfaces stay conforming. Returns what was
  * done; `mv` is left unchanged if no patch is below the threshold, if more than
- * `o.maximum_patches` would be optimised (`skipped`), or if the smallest sampled det J does
- * not improve. Deterministic.
+ * `o.maximum_patches` would be optimised (`skipped`), or (`reverted`) if the smallest
+ * sampled det J does not improve or a patch certified valid before is not afterwards.
+ * Deterministic.
  */
 inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
                                                 const Volume_untangling_options& o = Volume_untangling_options())
@@ -362,8 +367,12 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
     unknown[k] = unknown_of_root[root];
   }
   r.free_points = start.size();
+  std::vector<bool> certified_before(np, false);
   for(std::size_t c = 0; c < np; ++c)
-    if(active[c]) r.patches.push_back(c);
+    if(active[c]) {
+      r.patches.push_back(c);
+      certified_before[c] = certified_jacobian_bound(mv.patch(c)).certified_positive;
+    }
 
   // Per patch: the reference W (mean Jacobian over the unit cube of parameters) and W^-1.
   std::vector<Eigen::Matrix3d> Winv(np, Eigen::Matrix3d::Identity());
@@ -461,9 +470,21 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
     }
   }
   r.min_relative_determinant_after = min_det = measure_min(x);
-  if(!(min_det > r.min_relative_determinant_before)) { // no better: keep the construction
+  // Samples are not a certificate: a neighbour that was certified valid may have lost it.
+  bool lost = false;
+  if(min_det > r.min_relative_determinant_before) {
+    load(x);
+    for(std::size_t c : r.patches) {
+      if(!certified_before[c]) continue;
+      const Tensor_bspline_volume& v = mv.patch(c);
+      lost = lost || !certified_jacobian_bound(Tensor_bspline_volume({{v.knot_vector(0), v.knot_vector(1), v.knot_vector(2)}}, points[c]))
+                        .certified_positive;
+    }
+  }
+  if(!(min_det > r.min_relative_determinant_before) || lost) { // no better: keep the construction
     for(std::size_t k = 0; k < start.size(); ++k) x.segment<3>(Eigen::Index(3 * k)) = start[k];
     r.min_relative_determinant_after = min_det = r.min_relative_determinant_before;
+    r.reverted = true;
   }
   r.positive_at_samples = min_det > 0.;
   load(x);
