@@ -117,6 +117,21 @@ inline Direction_samples span_samples_with_ends(const Knot_vector& kv, int q)
   return direction_samples(kv, t, w);
 }
 
+/// Sizes shared by patch_jacobians() and its adjoint: samples q and non-zero functions P per
+/// direction, the net's n1, n2 and n0 n1.
+struct Grid_sizes
+{
+  std::size_t q0, q1, q2;
+  int P0, P1, P2;
+  std::size_t n1, n2, n01;
+};
+
+inline Grid_sizes grid_sizes(const std::array<int, 3>& n, const std::array<Direction_samples, 3>& S)
+{
+  return {S[0].weight.size(), S[1].weight.size(), S[2].weight.size(), S[0].p + 1, S[1].p + 1, S[2].p + 1,
+          std::size_t(n[1]), std::size_t(n[2]), std::size_t(n[0]) * std::size_t(n[1])};
+}
+
 /// Jacobians J[s] (columns d/du, d/dv, d/dw) of a patch with control points P at all samples
 /// s = a + q0 (b + q1 c) of the tensor grid S[0] x S[1] x S[2], by sum factorisation (one
 /// direction contracted at a time): O(q n^2 p) work instead of O(q^3 p^3).
@@ -124,9 +139,7 @@ inline void patch_jacobians(const std::array<int, 3>& n, const std::array<Direct
                             const std::vector<Eigen::Vector3d>& P, std::vector<Eigen::Matrix3d>& J)
 {
   using Eigen::Vector3d;
-  const std::size_t q0 = S[0].weight.size(), q1 = S[1].weight.size(), q2 = S[2].weight.size();
-  const int P0 = S[0].p + 1, P1 = S[1].p + 1, P2 = S[2].p + 1;
-  const std::size_t n1 = std::size_t(n[1]), n2 = std::size_t(n[2]), n01 = std::size_t(n[0]) * n1;
+  const auto [q0, q1, q2, P0, P1, P2, n1, n2, n01] = grid_sizes(n, S);
   // u contracted: A[(a, j, k)] = sum_i {N, N'}_u(a, i) P(i, j, k).
   std::vector<Vector3d> A0(q0 * n1 * n2, Vector3d::Zero()), A1(A0.size(), Vector3d::Zero());
   for(std::size_t k = 0; k < n2; ++k)
@@ -174,9 +187,7 @@ inline void patch_jacobians_adjoint(const std::array<int, 3>& n, const std::arra
                                     const std::vector<Eigen::Matrix3d>& G, std::vector<Eigen::Vector3d>& dP)
 {
   using Eigen::Vector3d;
-  const std::size_t q0 = S[0].weight.size(), q1 = S[1].weight.size(), q2 = S[2].weight.size();
-  const int P0 = S[0].p + 1, P1 = S[1].p + 1, P2 = S[2].p + 1;
-  const std::size_t n1 = std::size_t(n[1]), n2 = std::size_t(n[2]), n01 = std::size_t(n[0]) * n1;
+  const auto [q0, q1, q2, P0, P1, P2, n1, n2, n01] = grid_sizes(n, S);
   std::vector<Vector3d> B00(q0 * q1 * n2, Vector3d::Zero()), B10(B00.size(), Vector3d::Zero()), B01(B00.size(), Vector3d::Zero());
   for(std::size_t c = 0; c < q2; ++c)
     for(std::size_t b = 0; b < q1; ++b)
