@@ -208,7 +208,7 @@ TEST_CASE("sum-factorised Jacobians match the spline's derivatives and their adj
   v.control_point({{2, 1, 3}}).z() += 0.3;
   std::array<PI::internal::Direction_samples, 3> S;
   for(int d = 0; d < 3; ++d) S[std::size_t(d)] = PI::internal::span_samples_with_ends(v.knot_vector(d), 3);
-  const std::array<int, 3> n = PI::internal::net_size(v);
+  const std::array<int, 3> n = v.control_net_size();
   std::vector<Eigen::Matrix3d> J;
   PI::internal::patch_jacobians(n, S, v.control_points(), J);
   const std::size_t q = S[0].weight.size();

@@ -82,7 +82,7 @@ Chained_layout<Point_3> split_long_cuboids(const Polycube_layout<Point_3>& layou
   if(N < 2 || samples.grids.size() != np || samples.arc_samples.size() != na)
     throw Invalid_input_error("invalid_grid", "splitting cuboids needs the layout's patch grids with at least 2 segments");
   std::vector<double> arc_length(na);
-  for(std::size_t a = 0; a < na; ++a) arc_length[a] = internal::polyline_length(samples.arc_samples[a]);
+  for(std::size_t a = 0; a < na; ++a) arc_length[a] = internal::cumulative_lengths(samples.arc_samples[a]).back();
   // The arc of patch p joining nodes x and y (npos if none).
   const std::size_t none = std::size_t(-1);
   auto arc_between = [&](std::size_t p, std::size_t x, std::size_t y) {

@@ -67,17 +67,6 @@ struct Padded_layout
 
 namespace internal {
 
-/// Grid index of sample k (from corner i) along side i of a patch square (set_grid_border()).
-inline std::array<int, 2> border_index(int i, int k, int N)
-{
-  switch(i) {
-  case 0: return {{k, 0}};
-  case 1: return {{N, k}};
-  case 2: return {{N - k, N}};
-  default: return {{0, N - k}};
-  }
-}
-
 /// Unit normal grid u x grid v at (i, j), by central differences (one-sided on the border);
 /// zero where the grid is degenerate.
 inline Eigen::Vector3d grid_normal(const Point_grid& g, int i, int j)
@@ -88,13 +77,6 @@ inline Eigen::Vector3d grid_normal(const Point_grid& g, int i, int j)
   const Eigen::Vector3d n = du.cross(dv);
   const double l = n.norm();
   return l > 0. ? Eigen::Vector3d(n / l) : Eigen::Vector3d::Zero();
-}
-
-inline double polyline_length(const std::vector<Eigen::Vector3d>& pts)
-{
-  double l = 0.;
-  for(std::size_t k = 1; k < pts.size(); ++k) l += (pts[k] - pts[k - 1]).norm();
-  return l;
 }
 
 } // namespace internal
@@ -142,7 +124,7 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
   std::vector<Eigen::Vector3d> outer(nn, Eigen::Vector3d::Zero());
   for(std::size_t a = 0; a < na; ++a) {
     const auto& s = samples.arc_samples[a];
-    const double l = o.thickness * internal::polyline_length(s);
+    const double l = o.thickness * internal::cumulative_lengths(s).back();
     for(int e = 0; e < 2; ++e) {
       const std::size_t n = layout.arcs[a].nodes[std::size_t(e)];
       depth[n] = std::min(depth[n], l);

@@ -63,6 +63,22 @@ struct Patch_sampling_options
   bool smooth_interior_patches = true;
 };
 
+namespace internal {
+
+/// Grid index of sample k (from corner i) along side i of a patch square whose corners
+/// 0..3 sit at (0,0), (N,0), (N,N), (0,N).
+inline std::array<int, 2> border_index(int i, int k, int N)
+{
+  switch(i) {
+  case 0: return {{k, 0}};
+  case 1: return {{N, k}};
+  case 2: return {{N - k, N}};
+  default: return {{0, N - k}};
+  }
+}
+
+} // namespace internal
+
 /// Point grids of every patch of a layout, (N+1) x (N+1) each.
 struct Patch_grids
 {
@@ -81,12 +97,8 @@ struct Patch_grids
     const int N = segments;
     std::vector<Eigen::Vector3d> r;
     for(int k = 0; k <= N; ++k) {
-      switch(i) {
-      case 0: r.push_back(g(k, 0)); break;
-      case 1: r.push_back(g(N, k)); break;
-      case 2: r.push_back(g(N - k, N)); break;
-      default: r.push_back(g(0, N - k)); break;
-      }
+      const std::array<int, 2> ij = internal::border_index(i, k, N);
+      r.push_back(g(ij[0], ij[1]));
     }
     return r;
   }
@@ -141,13 +153,8 @@ inline void set_grid_border(Point_grid& g, int N, const std::array<const std::ve
 {
   for(int i = 0; i < 4; ++i)
     for(int k = 0; k <= N; ++k) {
-      const Eigen::Vector3d& p = (*arc[std::size_t(i)])[std::size_t(forward[std::size_t(i)] ? k : N - k)];
-      switch(i) {
-      case 0: g(k, 0) = p; break;
-      case 1: g(N, k) = p; break;
-      case 2: g(N - k, N) = p; break;
-      default: g(0, N - k) = p; break;
-      }
+      const std::array<int, 2> ij = border_index(i, k, N);
+      g(ij[0], ij[1]) = (*arc[std::size_t(i)])[std::size_t(forward[std::size_t(i)] ? k : N - k)];
     }
 }
 

@@ -221,12 +221,6 @@ inline void patch_jacobians_adjoint(const std::array<int, 3>& n, const std::arra
       }
 }
 
-/// Control net size of v.
-inline std::array<int, 3> net_size(const Tensor_bspline_volume& v)
-{
-  return {{v.number_of_control_points(0), v.number_of_control_points(1), v.number_of_control_points(2)}};
-}
-
 /// Weight of sample s = a + q0 (b + q1 c).
 inline double sample_weight(const std::array<Direction_samples, 3>& S, std::size_t s)
 {
@@ -255,7 +249,7 @@ inline Eigen::Matrix3d cofactor(const Eigen::Matrix3d& K)
 inline double sampled_scaled_jacobian(const Tensor_bspline_volume& v, const std::array<Direction_samples, 3>& S)
 {
   std::vector<Eigen::Matrix3d> J;
-  patch_jacobians(net_size(v), S, v.control_points(), J);
+  patch_jacobians(v.control_net_size(), S, v.control_points(), J);
   double m = std::numeric_limits<double>::infinity();
   for(const Eigen::Matrix3d& M : J) {
     const double len = M.col(0).norm() * M.col(1).norm() * M.col(2).norm();
@@ -269,7 +263,7 @@ template <class F>
 void for_each_side_point(const Tensor_bspline_volume& v, int s, F&& f)
 {
   const int d = side_direction(s);
-  std::array<int, 3> n{{v.number_of_control_points(0), v.number_of_control_points(1), v.number_of_control_points(2)}};
+  const std::array<int, 3> n = v.control_net_size();
   std::array<int, 3> i{};
   i[std::size_t(d)] = side_parameter(s) ? n[std::size_t(d)] - 1 : 0;
   const int d1 = (d + 1) % 3, d2 = (d + 2) % 3;
@@ -299,11 +293,14 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
   const std::size_t np = mv.number_of_patches();
   std::vector<std::array<internal::Direction_samples, 3>> samples(np);
   std::vector<bool> active(np, false);
+  std::vector<double> sampled(np, 0.); // smallest sampled scaled Jacobian (polynomial patches)
   bool any = false;
   for(std::size_t c = 0; c < np; ++c) {
     const Tensor_bspline_volume& v = mv.patch(c);
     for(int d = 0; d < 3; ++d) samples[c][std::size_t(d)] = internal::span_samples_with_ends(v.knot_vector(d), o.points_per_span);
-    if(!v.is_rational() && internal::sampled_scaled_jacobian(v, samples[c]) < o.scaled_jacobian_threshold) active[c] = any = true;
+    if(v.is_rational()) continue;
+    sampled[c] = internal::sampled_scaled_jacobian(v, samples[c]);
+    if(sampled[c] < o.scaled_jacobian_threshold) active[c] = any = true;
   }
   if(!any) {
     r.positive_at_samples = true;
@@ -382,7 +379,8 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
   for(std::size_t c = 0; c < np; ++c)
     if(active[c]) {
       r.patches.push_back(c);
-      certified_before[c] = certified_jacobian_bound(mv.patch(c)).certified_positive;
+      // A non-positive sample already rules out a certificate (and the bound is costly there).
+      certified_before[c] = sampled[c] > 0. && certified_jacobian_bound(mv.patch(c)).certified_positive;
     }
 
   // Per patch: the reference W (mean Jacobian over the unit cube of parameters) and W^-1.
@@ -391,7 +389,7 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
     Eigen::Matrix3d W = Eigen::Matrix3d::Zero();
     double total = 0.;
     std::vector<Eigen::Matrix3d> J;
-    internal::patch_jacobians(internal::net_size(mv.patch(c)), samples[c], mv.patch(c).control_points(), J);
+    internal::patch_jacobians(mv.patch(c).control_net_size(), samples[c], mv.patch(c).control_points(), J);
     for(std::size_t s = 0; s < J.size(); ++s) {
       const double w = internal::sample_weight(samples[c], s);
       W += w * J[s], total += w;
@@ -419,7 +417,7 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
     double m = std::numeric_limits<double>::infinity();
     std::vector<Eigen::Matrix3d> J;
     for(std::size_t c : r.patches) {
-      internal::patch_jacobians(internal::net_size(mv.patch(c)), samples[c], points[c], J);
+      internal::patch_jacobians(mv.patch(c).control_net_size(), samples[c], points[c], J);
       for(const Eigen::Matrix3d& M : J) m = std::min(m, (M * Winv[c]).determinant());
     }
     return m;
@@ -433,7 +431,7 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
     g.setZero(y.size());
     double E = 0.;
     for(std::size_t c : r.patches) {
-      const std::array<int, 3> n = internal::net_size(mv.patch(c));
+      const std::array<int, 3> n = mv.patch(c).control_net_size();
       const Eigen::Matrix3d& Wi = Winv[c];
       internal::patch_jacobians(n, samples[c], points[c], J);
       G.resize(J.size());
@@ -480,7 +478,7 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
       if(min_det > 0. && settled) break;
     }
   }
-  r.min_relative_determinant_after = min_det = measure_min(x);
+  r.min_relative_determinant_after = min_det; // measured after the last round (x unchanged since)
   // Samples are not a certificate: a neighbour that was certified valid may have lost it.
   bool lost = false;
   if(min_det > r.min_relative_determinant_before) {
