@@ -108,6 +108,36 @@ PANTS_CASE("3torus.off", 3, 0, false)
 PANTS_CASE("anchor.off", 4, 0, true)
 PANTS_CASE("mech-holes-shark.off", 0, 4, true)
 
+TEST_CASE("a refined decomposition is the same decomposition on a finer mesh", "[pants][refine]")
+{
+  // anchor.off: two of its cycles run one edge apart around a thin handle.
+  const Mesh m = load(data("anchor.off"));
+  const Pants::Result r = Pants()(m);
+  const Pants::Result f = PI::refined_pants_decomposition(m, r);
+  check_pants(m, f, 4, 0);
+  CHECK(f.refinements == r.refinements + 1);
+  const Mesh& coarse = r.mesh(m);
+  const Mesh& fine = f.mesh(m);
+  CHECK(num_faces(fine) == 4 * num_faces(coarse));
+  for(std::size_t k = 0; k < r.pants.size(); ++k) CHECK(f.pants[k].faces.size() == 4 * r.pants[k].faces.size());
+  for(std::size_t c = 0; c < r.cycles.size(); ++c) {
+    const auto &a = r.cycles[c], &b = f.cycles[c];
+    CHECK(b.kind == a.kind);
+    REQUIRE(b.vertices.size() == 2 * a.vertices.size());
+    // Same course: every other vertex is the old one, the ones between are edge midpoints.
+    bool same = true;
+    for(std::size_t i = 0; i < a.vertices.size(); ++i) {
+      same = same && b.vertices[2 * i] == a.vertices[i];
+      const auto p = fine.point(b.vertices[2 * i + 1]);
+      const auto q = CGAL::midpoint(coarse.point(a.vertices[i]), coarse.point(a.vertices[(i + 1) % a.vertices.size()]));
+      same = same && p == q && b.points[2 * i + 1] == std::array<double, 3>{{p.x(), p.y(), p.z()}};
+    }
+    CHECK(same);
+    CHECK(std::abs(b.length - a.length) <= 1e-12 * a.length);
+  }
+  check_cycles_bound_inside(m, f);
+}
+
 TEST_CASE("a single pants patch passes through unchanged", "[pants][corpus]")
 {
   const Mesh m = load(data("head.off"));

@@ -49,6 +49,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -260,17 +261,30 @@ public:
     Surface_topology_result<TriangleMesh> topo = internal::given_or_computed_topology(tm, get_parameter(np, internal_np::surface_topology));
     // Where a boundary is too coarse for its corners or a half has no room for its arcs, the
     // whole surface is subdivided at edge midpoints (the shape does not change, the input's
-    // vertices keep their indices) and the construction starts again.
+    // vertices keep their indices) and the construction starts again. On the pants path the
+    // decomposition is kept and carried to the finer mesh: recomputed there, its cycles would
+    // hug each other again (two shortest loops around one thin handle stay one edge apart).
+    std::optional<Pants_decomposition_result<TriangleMesh>> pd;
+    if(topo.euler_characteristic < 0)
+      pd = Pants_decomposition<TriangleMesh>()(
+        tm, parameters::surface_topology(topo)
+              .cut_criterion(option(np, internal_np::cut_criterion, Cut_criterion::LENGTH))
+              .symmetry_plane(option(np, internal_np::symmetry_plane, Cut_criterion_options().symmetry_plane))
+              .criterion_strength(option(np, internal_np::criterion_strength, 1.0)));
     std::shared_ptr<TriangleMesh> refined;
     for(int attempt = 0;; ++attempt) {
       const TriangleMesh& mesh = refined ? *refined : tm;
       try {
-        Layout L = layout_of(mesh, topo, np);
+        Layout L = pd ? pants_layout(tm, *pd) : layout_of(mesh, topo);
         carry_input_indices(tm, L);
         return L;
       } catch(const Internal_error& e) {
         if(attempt >= max_refinements)
           throw Internal_error(e.reason(), std::string(e.what()) + " (after " + std::to_string(attempt) + " refinement(s))");
+      }
+      if(pd) {
+        pd = refined_pants_decomposition(tm, *pd);
+        continue;
       }
       auto next = std::make_shared<TriangleMesh>(mesh);
       internal::subdivide_at_edge_midpoints(*next, get(CGAL::vertex_point, *next));
@@ -280,21 +294,15 @@ public:
   }
 
 private:
-  template <class NamedParameters>
-  static Layout layout_of(const TriangleMesh& tm, const Surface_topology_result<TriangleMesh>& topo, const NamedParameters& np)
+  /// The classes with Euler characteristic >= 0, which have no pants (item 3 of the issue).
+  static Layout layout_of(const TriangleMesh& tm, const Surface_topology_result<TriangleMesh>& topo)
   {
     const int g = topo.genus;
     const std::size_t b = topo.number_of_boundary_loops();
     if(g == 0 && b == 0) return sphere(copy_of(tm));
     if(g == 0 && b == 1) return disk(copy_of(tm));
     if(g == 0 && b == 2) return cylinder(copy_of(tm));
-    if(g == 1 && b == 0) return torus(tm, topo);
-    const auto pants = Pants_decomposition<TriangleMesh>()(
-      tm, parameters::surface_topology(topo)
-            .cut_criterion(option(np, internal_np::cut_criterion, Cut_criterion::LENGTH))
-            .symmetry_plane(option(np, internal_np::symmetry_plane, Cut_criterion_options().symmetry_plane))
-            .criterion_strength(option(np, internal_np::criterion_strength, 1.0)));
-    return pants_layout(tm, pants);
+    return torus(tm, topo);
   }
 
   /// A Surface_mesh copy with compact indices (the pieces rely on index order).

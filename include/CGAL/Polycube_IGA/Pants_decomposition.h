@@ -1182,18 +1182,7 @@ private:
     const std::size_t old_vertices = num_vertices(m);
     internal::subdivide_at_edge_midpoints(m, get(CGAL::vertex_point, m));
     std::vector<std::vector<vertex_descriptor>> out;
-    for(const auto& loop : loops) {
-      std::vector<vertex_descriptor> refined;
-      for(std::size_t i = 0; i < loop.size(); ++i) {
-        const vertex_descriptor a = loop[i], b = loop[(i + 1) % loop.size()];
-        refined.push_back(a);
-        for(auto h : halfedges_around_target(a, m)) {
-          const vertex_descriptor x = source(h, m);
-          if(std::size_t(x) >= old_vertices && halfedge(x, b, m).second) { refined.push_back(x); break; }
-        }
-      }
-      out.push_back(refined);
-    }
+    for(const auto& loop : loops) out.push_back(internal::refined_loop(m, loop, old_vertices));
     return out;
   }
 
@@ -1206,6 +1195,48 @@ Pants_decomposition_result<TriangleMesh> pants_decomposition(const TriangleMesh&
                                                              const NamedParameters& np = parameters::default_values())
 {
   return Pants_decomposition<TriangleMesh>()(tm, np);
+}
+
+/// \ingroup PkgPolycubeIGARef
+/// The same decomposition on its mesh subdivided once more at edge midpoints: every cycle
+/// keeps its course (with the midpoints of its edges added) and every face's four children
+/// stay in its pants. Two cycles that ran one edge apart now have vertices between them,
+/// which a later stage can use (the cuboid stage's cutting curves, §2.2.2).
+template <class TriangleMesh>
+Pants_decomposition_result<TriangleMesh> refined_pants_decomposition(const TriangleMesh& tm,
+                                                                     const Pants_decomposition_result<TriangleMesh>& r)
+{
+  using face_descriptor = typename boost::graph_traits<TriangleMesh>::face_descriptor;
+  Pants_decomposition_result<TriangleMesh> out;
+  out.genus = r.genus;
+  out.boundary_loops = r.boundary_loops;
+  out.refinements = r.refinements + 1;
+  out.refined_mesh = std::make_shared<TriangleMesh>(r.mesh(tm));
+  TriangleMesh& m = *out.refined_mesh;
+  std::map<face_descriptor, int> pants_of;
+  for(std::size_t k = 0; k < r.pants.size(); ++k)
+    for(face_descriptor f : r.pants[k].faces) pants_of[f] = int(k);
+  const std::size_t old_vertices = num_vertices(m);
+  std::map<face_descriptor, int> child_pants;
+  const auto vpm = get(CGAL::vertex_point, m);
+  internal::subdivide_at_edge_midpoints(m, vpm, [&](face_descriptor child, face_descriptor parent) {
+    const auto it = pants_of.find(parent);
+    if(it != pants_of.end()) child_pants[child] = it->second;
+  });
+  out.cycles = r.cycles;
+  for(auto& c : out.cycles) {
+    c.vertices = internal::refined_loop(m, c.vertices, old_vertices);
+    c.points.clear();
+    for(auto v : c.vertices) {
+      const auto p = get(vpm, v);
+      c.points.push_back({{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}});
+    }
+  }
+  out.pants = r.pants;
+  for(auto& p : out.pants) p.faces.clear();
+  for(face_descriptor f : faces(m)) // in the mesh's face order, so the result is deterministic
+    out.pants[std::size_t(child_pants.at(f))].faces.push_back(f);
+  return out;
 }
 
 } // namespace Polycube_IGA

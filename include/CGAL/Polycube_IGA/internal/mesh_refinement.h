@@ -20,8 +20,15 @@ namespace CGAL {
 namespace Polycube_IGA {
 namespace internal {
 
-template <class TriangleMesh, class VertexPointMap>
-void subdivide_at_edge_midpoints(TriangleMesh& tm, VertexPointMap vpm)
+struct Ignore_child_face
+{
+  template <class F> void operator()(F, F) const {}
+};
+
+/// Subdivides every face into four. `on_child(child, parent)` is called for every face
+/// after the subdivision with the face it came from (some faces more than once).
+template <class TriangleMesh, class VertexPointMap, class OnChildFace = Ignore_child_face>
+void subdivide_at_edge_midpoints(TriangleMesh& tm, VertexPointMap vpm, OnChildFace on_child = OnChildFace())
 {
   using GT = boost::graph_traits<TriangleMesh>;
   using halfedge_descriptor = typename GT::halfedge_descriptor;
@@ -43,10 +50,32 @@ void subdivide_at_edge_midpoints(TriangleMesh& tm, VertexPointMap vpm)
     while(!get(is_new, target(h, tm))) h = next(h, tm);
     for(int corner = 0; corner < 3; ++corner) {
       halfedge_descriptor h2 = next(next(h, tm), tm);
-      if(corner == 2) { CGAL::Euler::split_face(h, h2, tm); break; }
       h = CGAL::Euler::split_face(h, h2, tm); // returned halfedge stays on the central face
+      on_child(face(h, tm), f);
+      on_child(face(opposite(h, tm), tm), f);
     }
   }
+}
+
+/// A closed loop of old vertices, after `subdivide_at_edge_midpoints`, with the midpoint of
+/// each of its edges inserted (a, m_ab, b, ...); `old_vertices` is the vertex count before.
+template <class TriangleMesh>
+std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>
+refined_loop(const TriangleMesh& m, const std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>& loop,
+             std::size_t old_vertices)
+{
+  using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
+  std::vector<vertex_descriptor> refined;
+  for(std::size_t i = 0; i < loop.size(); ++i) {
+    const vertex_descriptor a = loop[i], b = loop[(i + 1) % loop.size()];
+    refined.push_back(a);
+    // The midpoint of ab is the one new neighbour of a that is also b's neighbour.
+    for(auto h : halfedges_around_target(a, m)) {
+      const vertex_descriptor x = source(h, m);
+      if(std::size_t(x) >= old_vertices && halfedge(x, b, m).second) { refined.push_back(x); break; }
+    }
+  }
+  return refined;
 }
 
 } // namespace internal
