@@ -10,20 +10,60 @@
 #define CGAL_POLYCUBE_IGA_H
 
 #include <CGAL/Polycube_IGA/Cuboid_decomposition.h>
+#include <CGAL/Polycube_IGA/Boundary_distance.h>
 #include <CGAL/Polycube_IGA/Errors.h>
 #include <CGAL/Polycube_IGA/Layout_volume.h>
 #include <CGAL/Polycube_IGA/Polycube_layout.h>
 #include <CGAL/Polycube_IGA/Surface_topology.h>
 #include <CGAL/Polycube_IGA/parameters.h>
 
+#include <array>
 #include <chrono>
 #include <functional>
+#include <iomanip>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace CGAL {
 namespace Polycube_IGA {
+
+namespace internal {
+
+/// Says where the boundary is too far from the mesh. A mesh point far from the volume means
+/// a part of the shape is missing, typically a protrusion that one layout patch covers and
+/// its map to the square shrinks to almost nothing; a volume point far from the mesh means a
+/// fitted face bulges away from it.
+template <class Point_3>
+std::string boundary_distance_message(const Polycube_layout<Point_3>& layout, const Boundary_distance& d, double limit)
+{
+  auto number = [](double x) {
+    std::ostringstream os;
+    os << std::setprecision(3) << x;
+    return os.str();
+  };
+  auto percent = [&](double x) { return number(100. * x) + "%"; };
+  auto point = [&](const std::array<double, 3>& p) { return "(" + number(p[0]) + ", " + number(p[1]) + ", " + number(p[2]) + ")"; };
+  std::string s = "boundary distance " + percent(d.relative) + " of the bounding-box diagonal exceeds " + percent(limit) + ": ";
+  if(d.mesh_to_spline >= d.spline_to_mesh) {
+    int patch = -1;
+    for(std::size_t p = 0; p < layout.patches.size() && patch < 0; ++p)
+      for(auto f : layout.patches[p].faces)
+        if(std::size_t(f) == d.farthest_mesh_face) {
+          patch = int(p);
+          break;
+        }
+    s += "the mesh point " + point(d.farthest_mesh_point) + " (layout patch " + std::to_string(patch) + ") is " +
+         number(d.mesh_to_spline) + " from the volume's boundary: that part of the shape is not represented (likely a protrusion that the patch's map to the square shrinks to almost nothing)";
+  } else {
+    s += "the volume's boundary point " + point(d.farthest_spline_point) + " is " + number(d.spline_to_mesh) +
+         " from the mesh";
+  }
+  return s;
+}
+
+} // namespace internal
 
 /// \ingroup PkgPolycubeIGARef
 /// Everything `build_trivariate_model()` produced.
@@ -37,14 +77,30 @@ struct Trivariate_model
   std::vector<std::pair<std::string, double>> stage_seconds;
   std::vector<std::string> warnings;
 
-  /// True when every patch's det J is certified positive.
-  bool is_valid() const
+  /// The largest two-sided Hausdorff distance between the volume's boundary and the mesh that
+  /// a valid model may have, relative to the mesh's bounding-box diagonal.
+  double maximum_boundary_distance = 0.02;
+
+  /// Why the volume is not fit for analysis, as reason codes (empty when it is):
+  /// `quality_not_evaluated`, `nonpositive_jacobian` (a patch's det J is not certified
+  /// positive), `boundary_distance` (the boundary is farther from the mesh than
+  /// `maximum_boundary_distance`).
+  std::vector<std::string> invalidity_reasons() const
   {
-    if(!volume.quality_evaluated) return false;
+    if(!volume.quality_evaluated || volume.quality.certified.empty()) return {"quality_not_evaluated"};
+    std::vector<std::string> reasons;
     for(const auto& b : volume.quality.certified)
-      if(!b.certified_positive) return false;
-    return !volume.quality.certified.empty();
+      if(!b.certified_positive) {
+        reasons.push_back("nonpositive_jacobian");
+        break;
+      }
+    if(!(volume.distance.relative <= maximum_boundary_distance)) reasons.push_back("boundary_distance");
+    return reasons;
   }
+
+  /// True when every patch's det J is certified positive and the boundary is within
+  /// `maximum_boundary_distance` of the mesh.
+  bool is_valid() const { return invalidity_reasons().empty(); }
 };
 
 /// \ingroup PkgPolycubeIGARef
@@ -52,7 +108,9 @@ struct Trivariate_model
 /// Named parameters: those of Surface_topology, Pants_decomposition, Cuboid_decomposition
 /// and layout_volume() (grid_resolution, spline_degree, number_of_spans, boundary_layer
 /// (default 0.25 here; 0 for one volume patch per cuboid), maximum_cuboid_aspect (2 here),
-/// untangle_volume (true here), ...).
+/// untangle_volume (true here), ...) and `maximum_boundary_distance` (0.02: the model is
+/// not valid when its boundary is farther from the mesh than this fraction of the mesh's
+/// bounding-box diagonal).
 /// Throws the stages' errors; an invalid layout becomes Internal_error("invalid_layout").
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
 auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values(),
@@ -102,6 +160,9 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     model.warnings.push_back("untangling left a negative det J (smallest relative det " +
                              std::to_string(u.min_relative_determinant_after) + ", was " +
                              std::to_string(u.min_relative_determinant_before) + ")");
+  model.maximum_boundary_distance = option(np, internal_np::maximum_boundary_distance, 0.02);
+  if(model.volume.quality_evaluated && !(model.volume.distance.relative <= model.maximum_boundary_distance))
+    model.warnings.push_back(internal::boundary_distance_message(model.layout, model.volume.distance, model.maximum_boundary_distance));
   if(model.volume.quality_evaluated)
     for(std::size_t c = 0; c < model.volume.quality.certified.size(); ++c)
       if(!model.volume.quality.certified[c].certified_positive)

@@ -14,6 +14,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -79,7 +80,7 @@ TEST_CASE("build CLI writes nothing invalid and always reports", "[build][cli]")
   } else {
     // Not certified valid: exit 1 with the reason, no volume file, and the report says so.
     CHECK(r.exit_code == 1);
-    CHECK(r.err.find("nonpositive_jacobian") != std::string::npos);
+    CHECK((r.err.find("nonpositive_jacobian") != std::string::npos || r.err.find("boundary_distance") != std::string::npos));
     CHECK(!exists(xml));
     CHECK(rep.find("\"volume_written\":false") != std::string::npos);
   }
@@ -186,6 +187,49 @@ TEST_CASE("build CLI writes a certified torus volume without --allow-invalid", "
   const std::size_t cuboids = std::size_t(std::stoul(rep.substr(at + 10)));
   CHECK(mp.boundaries().size() == mp.number_of_patches() - cuboids);
   CHECK(2 * mp.interfaces().size() + mp.boundaries().size() == 6 * mp.number_of_patches());
+}
+
+TEST_CASE("a boundary farther than maximum_boundary_distance makes the model invalid, with the place named", "[build][distance]")
+{
+  const Mesh m = load(data("torus.obj"));
+  const auto strict = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).number_of_spans(2).maximum_boundary_distance(1e-9));
+  const auto& d = strict.volume.distance;
+  REQUIRE(d.relative > 1e-9);
+  CHECK_FALSE(strict.is_valid());
+  const auto reasons = strict.invalidity_reasons();
+  CHECK(std::find(reasons.begin(), reasons.end(), "boundary_distance") != reasons.end());
+  // The warning names the point; it lies on the mesh, at the distance reported.
+  std::string warning;
+  for(const auto& w : strict.warnings)
+    if(w.find("boundary distance") != std::string::npos) warning = w;
+  CHECK(warning.find("exceeds") != std::string::npos);
+  const auto& far = d.mesh_to_spline >= d.spline_to_mesh ? d.farthest_mesh_point : d.farthest_spline_point;
+  CHECK(std::max(d.mesh_to_spline, d.spline_to_mesh) == d.hausdorff);
+  CHECK(std::isfinite(far[0]));
+  // The same build with the default limit: valid, no distance warning, nothing else changed.
+  const auto plain = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).number_of_spans(2));
+  CHECK(plain.maximum_boundary_distance == 0.02);
+  const auto plain_reasons = plain.invalidity_reasons();
+  CHECK(std::find(plain_reasons.begin(), plain_reasons.end(), "boundary_distance") == plain_reasons.end());
+  CHECK(plain.volume.distance.hausdorff == d.hausdorff);
+}
+
+TEST_CASE("build CLI refuses a volume farther from the mesh than --max-distance", "[build][cli][distance]")
+{
+  const std::string xml = temp_path("far_torus.xml"), report = temp_path("far_torus.json");
+  const Cli_result r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --report '" + report +
+                               "' --grid 8 --max-distance 0.00001 --quiet");
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("boundary_distance") != std::string::npos);
+  CHECK(r.err.find("exceeds") != std::string::npos);
+  CHECK(!exists(xml));
+  const std::string rep = slurp(report);
+  CHECK(rep.find("\"invalidity_reasons\":[\"boundary_distance\"]") != std::string::npos);
+  CHECK(rep.find("\"farthest_mesh_point\":[") != std::string::npos);
+  CHECK(rep.find("\"volume_written\":false") != std::string::npos);
+  const Cli_result bad = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --max-distance -1");
+  CHECK(bad.exit_code == 2);
+  CHECK(bad.err.find("--max-distance") != std::string::npos);
 }
 
 TEST_CASE("the boundary layer raises the torus' minimum scaled Jacobian", "[build][boundary_layer]")

@@ -649,6 +649,21 @@ TEST_CASE("two-sided Hausdorff distance to a triangle mesh", "[spline]")
   CHECK(e.spline_to_mesh == Approx(0.1).epsilon(1e-9));
   CHECK(e.mesh_to_spline == Approx(0.1).epsilon(1e-9)); // mesh face x = 1 to spline face x = 1.1
   CHECK(e.relative == Approx(0.1 / std::sqrt(3.)).epsilon(1e-9));
+  // A volume covering only x <= 0.5 loses the part x > 0.5: the farthest mesh point is on
+  // the face x = 1 and the face it names touches it.
+  Tensor_bspline_volume half = unit_cube(1);
+  for(auto& p : half.control_points()) p.x() *= 0.5;
+  PI::Multipatch_volume mh;
+  mh.add_patch(half);
+  const auto h = PI::boundary_hausdorff_distance(mh, cube, 16);
+  CHECK(h.mesh_to_spline == Approx(0.5).epsilon(1e-9));
+  CHECK(h.farthest_mesh_point[0] == Approx(1.));
+  REQUIRE(h.farthest_mesh_face < num_faces(cube));
+  bool touches = false;
+  for(auto v : vertices_around_face(halfedge(Mesh::Face_index(std::uint32_t(h.farthest_mesh_face)), cube), cube))
+    touches = touches || cube.point(v).x() == 1.;
+  CHECK(touches);
+  CHECK(h.farthest_spline_point[0] <= 0.5 + 1e-12);
 }
 
 TEST_CASE("bad input gives Invalid_input_error, never a crash", "[spline]")

@@ -4,8 +4,9 @@
 // `polycube_iga build MESH -o OUT.xml [--vtu OUT.vtu] [--layout-vtu L.vtu]
 //                  [--layout-json L.json] [--report R.json] [--grid N] [--degree P]`:
 // the whole chain, mesh to multipatch B-spline volume (G+Smo XML). When some patch's
-// Jacobian is not certified positive the volume files are not written (exit 1,
-// reason nonpositive_jacobian) unless --allow-invalid; the report is always written.
+// Jacobian is not certified positive, or the boundary is farther from the mesh than
+// --max-distance, the volume files are not written (exit 1, reason nonpositive_jacobian or
+// boundary_distance) unless --allow-invalid; the report is always written.
 
 #include "arguments.h"
 #include "command_registry.h"
@@ -19,6 +20,7 @@
 #include <CGAL/Polycube_IGA/internal/json_writer.h>
 #include <CGAL/polycube_iga.h>
 
+#include <array>
 #include <chrono>
 #include <iostream>
 #include <unistd.h>
@@ -83,6 +85,9 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("untangling_min_relative_det_after", V.untangling.min_relative_determinant_after)
       .member("valid", model.is_valid())
       .member("volume_written", written);
+    w.key("invalidity_reasons").begin_array();
+    for(const auto& r : model.invalidity_reasons()) w.value(r);
+    w.end_array();
     w.key("patch_quality").begin_array();
     for(std::size_t c = 0; c < V.quality.sampled.size(); ++c) {
       const auto& s = V.quality.sampled[c];
@@ -105,7 +110,13 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("spline_to_mesh", V.distance.spline_to_mesh)
       .member("mesh_to_spline", V.distance.mesh_to_spline)
       .member("bbox_diagonal", V.distance.mesh_bbox_diagonal)
-      .end_object();
+      .member("maximum_relative", model.maximum_boundary_distance);
+    auto point = [&](const char* name, const std::array<double, 3>& p) {
+      w.key(name).begin_array().value(p[0]).value(p[1]).value(p[2]).end_array();
+    };
+    point("farthest_mesh_point", V.distance.farthest_mesh_point);
+    point("farthest_spline_point", V.distance.farthest_spline_point);
+    w.end_object();
     w.key("interfaces").begin_object()
       .member("count", V.volume.interfaces().size())
       .member("max_gap", V.quality.interfaces.max_gap)
@@ -127,7 +138,7 @@ int run_build(const Arguments& args)
   Parsed_arguments a(args, {"--merge-duplicates", "--drop-isolated", "--no-self-intersection-test", "--allow-invalid", "--quiet",
                       "--no-untangle"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
-                      "--boundary-layer"});
+                      "--boundary-layer", "--max-distance"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
   if(out.empty()) throw PI::Invalid_input_error("bad_arguments", "build needs -o OUT.xml");
@@ -135,6 +146,7 @@ int run_build(const Arguments& args)
   const int degree = positive_option(a, "--degree", 3, 1, 7);
   const PI::Cut_criterion criterion = PI::parse_cut_criterion(a.get("--criterion", "length"));
   const double layer = fraction_option(a, "--boundary-layer", 0.25, 0., 0.5);
+  const double max_distance = fraction_option(a, "--max-distance", 0.02, 0., 1.);
   const bool verbose = !a.has("--quiet") && isatty(2);
   auto progress = [&](const std::string& stage) {
     if(verbose) std::cerr << "polycube_iga: " << stage << "...\n";
@@ -147,7 +159,7 @@ int run_build(const Arguments& args)
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto model = PI::build_trivariate_model(
     in.mesh, PI::parameters::grid_resolution(grid).spline_degree(degree).cut_criterion(criterion).boundary_layer(layer)
-      .untangle_volume(!a.has("--no-untangle")),
+      .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance),
     progress);
 
   const bool write_volume = model.is_valid() || a.has("--allow-invalid");
@@ -155,11 +167,18 @@ int run_build(const Arguments& args)
   if(a.has("--layout-json")) PI::IO::write_layout_json(a.get("--layout-json"), model.layout);
   if(a.has("--report")) write_report(a.get("--report"), in, model, read_seconds, write_volume);
   if(!write_volume) {
-    std::string worst;
-    for(const auto& w : model.warnings)
-      if(w.find("det J") != std::string::npos) { worst = w; break; }
-    throw PI::Internal_error("nonpositive_jacobian", "the volume is not certified valid (" + worst +
-                                                       "); nothing written (--allow-invalid writes it anyway)");
+    // The first reason is the error's; the message says, for each, what is wrong and where.
+    const std::vector<std::string> reasons = model.invalidity_reasons();
+    const std::string reason = reasons.front();
+    std::string all;
+    for(const auto& r : reasons) {
+      const std::string topic = r == "boundary_distance" ? "boundary distance" : "det J";
+      std::string detail;
+      for(const auto& w : model.warnings)
+        if(w.find(topic) != std::string::npos) { detail = w; break; }
+      all += (all.empty() ? "" : "; ") + r + (detail.empty() ? "" : ": " + detail);
+    }
+    throw PI::Internal_error(reason, "the volume is not valid (" + all + "); nothing written (--allow-invalid writes it anyway)");
   }
   progress("writing " + out);
   PI::IO::write_gismo_xml(out, model.volume.volume);
@@ -179,7 +198,7 @@ Register_command build_command("build", {
   "the whole chain: mesh -> polycube layout -> multipatch B-spline volume (G+Smo XML)",
   "usage: polycube_iga build MESH -o OUT.xml [--vtu OUT.vtu] [--layout-vtu L.vtu] [--layout-json L.json]\n"
   "                          [--report R.json] [--grid N] [--degree P] [--criterion length|minima|symmetry]\n"
-  "                          [--boundary-layer T] [--no-untangle]\n"
+  "                          [--boundary-layer T] [--max-distance F] [--no-untangle] [--allow-invalid]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
   "  --layout-vtu L    the polycube layout on the surface: patches, arcs, nodes\n"
@@ -191,8 +210,11 @@ Register_command build_command("build", {
   "                    shortest arc at each node (default 0.25; 0: one patch per cuboid)\n"
   "  --no-untangle     keep the constructed inner control points; by default those of patches\n"
   "                    with poor or negative det J are moved to untangle them (surface kept)\n"
-  "  --allow-invalid   write the volume even if some det J is not certified positive\n"
-  "  exit 1 with nonpositive_jacobian when the volume is not certified valid (nothing written)\n",
+  "  --max-distance F  largest Hausdorff distance between the volume's boundary and the mesh,\n"
+  "                    as a fraction of the bounding-box diagonal (default 0.02)\n"
+  "  --allow-invalid   write the volume even if it is not valid\n"
+  "  exit 1 with nonpositive_jacobian when some det J is not certified positive, or with\n"
+  "  boundary_distance when the boundary is farther than --max-distance (nothing written)\n",
   run_build});
 
 } // namespace

@@ -22,8 +22,10 @@
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/named_params_helper.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 #include <vector>
@@ -39,6 +41,10 @@ struct Boundary_distance
   double relative = 0.;        ///< hausdorff / mesh bounding-box diagonal
   double mesh_bbox_diagonal = 0.;
   std::size_t spline_samples = 0, mesh_samples = 0, boundary_sides = 0;
+  /// Where the two maxima are attained, so a report can say which part of the shape is lost.
+  std::array<double, 3> farthest_spline_point{{0., 0., 0.}}, farthest_mesh_point{{0., 0., 0.}};
+  /// The mesh face at `farthest_mesh_point` (its face, or a face around it for a vertex).
+  std::size_t farthest_mesh_face = 0;
 };
 
 /// Two-sided Hausdorff distance between the boundary of `mp` (its declared boundary sides,
@@ -101,8 +107,16 @@ Boundary_distance boundary_hausdorff_distance(const Multipatch_volume& mp, const
   using Mesh_tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Mesh_primitive>>;
   Mesh_tree mesh_tree(faces(mesh).first, faces(mesh).second, mesh);
   mesh_tree.accelerate_distance_queries();
-  for(const Point_3& p : spline_points)
-    r.spline_to_mesh = std::max(r.spline_to_mesh, std::sqrt(CGAL::to_double(mesh_tree.squared_distance(p))));
+  auto as_array = [](const Point_3& p) {
+    return std::array<double, 3>{{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
+  };
+  for(const Point_3& p : spline_points) {
+    const double d = std::sqrt(CGAL::to_double(mesh_tree.squared_distance(p)));
+    if(d > r.spline_to_mesh) {
+      r.spline_to_mesh = d;
+      r.farthest_spline_point = as_array(p);
+    }
+  }
   r.spline_samples = spline_points.size();
 
   using Soup_primitive = CGAL::AABB_triangle_primitive<K, typename std::vector<Triangle_3>::const_iterator>;
@@ -110,15 +124,27 @@ Boundary_distance boundary_hausdorff_distance(const Multipatch_volume& mp, const
   Soup_tree soup_tree(spline_triangles.cbegin(), spline_triangles.cend());
   soup_tree.accelerate_distance_queries();
   auto vpm = get(CGAL::vertex_point, mesh);
-  std::vector<Point_3> mesh_points;
-  for(auto v : vertices(mesh)) mesh_points.push_back(get(vpm, v));
+  using face_descriptor = typename boost::graph_traits<TriangleMesh>::face_descriptor;
+  std::vector<std::pair<Point_3, face_descriptor>> mesh_points; // with a face they lie on
+  const auto face_index = CGAL::get_initialized_face_index_map(mesh);
+  for(auto v : vertices(mesh)) {
+    const auto h = halfedge(v, mesh);
+    if(h == boost::graph_traits<TriangleMesh>::null_halfedge()) continue; // isolated
+    mesh_points.push_back({get(vpm, v), face(is_border(h, mesh) ? opposite(h, mesh) : h, mesh)});
+  }
   for(auto f : faces(mesh)) {
     auto h = halfedge(f, mesh);
-    mesh_points.push_back(CGAL::centroid(get(vpm, source(h, mesh)), get(vpm, target(h, mesh)),
-                                         get(vpm, target(next(h, mesh), mesh))));
+    mesh_points.push_back({CGAL::centroid(get(vpm, source(h, mesh)), get(vpm, target(h, mesh)),
+                                          get(vpm, target(next(h, mesh), mesh))), f});
   }
-  for(const Point_3& p : mesh_points)
-    r.mesh_to_spline = std::max(r.mesh_to_spline, std::sqrt(CGAL::to_double(soup_tree.squared_distance(p))));
+  for(const auto& pf : mesh_points) {
+    const double d = std::sqrt(CGAL::to_double(soup_tree.squared_distance(pf.first)));
+    if(d > r.mesh_to_spline) {
+      r.mesh_to_spline = d;
+      r.farthest_mesh_point = as_array(pf.first);
+      r.farthest_mesh_face = std::size_t(get(face_index, pf.second));
+    }
+  }
   r.mesh_samples = mesh_points.size();
 
   const CGAL::Bbox_3 bb = CGAL::Polygon_mesh_processing::bbox(mesh);

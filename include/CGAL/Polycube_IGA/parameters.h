@@ -47,7 +47,8 @@ namespace Polycube_IGA {
   /* volume */                                                                      \
   X(boundary_layer_t, boundary_layer)                                               \
   X(maximum_cuboid_aspect_t, maximum_cuboid_aspect)                                 \
-  X(untangle_volume_t, untangle_volume)
+  X(untangle_volume_t, untangle_volume)                                             \
+  X(maximum_boundary_distance_t, maximum_boundary_distance)
 
 namespace internal_np {
 #define CGAL_POLYCUBE_IGA_DECLARE_TAG(TAG, NAME) enum TAG { NAME };
