@@ -31,10 +31,10 @@ namespace Polycube_IGA {
 
 namespace internal {
 
-/// Says where the boundary is too far from the mesh. A mesh point far from the volume means
-/// a part of the shape is missing, typically a protrusion that one layout patch covers and
-/// its map to the square shrinks to almost nothing; a volume point far from the mesh means a
-/// fitted face bulges away from it.
+/// Says where the boundary is too far from the mesh. A mesh point much farther from the
+/// volume than any volume point is from the mesh means a part of the shape is missing,
+/// typically a protrusion that one layout patch covers and its map to the square shrinks to
+/// almost nothing; otherwise the faces are fitted too coarsely or bulge away from the mesh.
 template <class Point_3>
 std::string boundary_distance_message(const Polycube_layout<Point_3>& layout, const Boundary_distance& d, double limit)
 {
@@ -55,7 +55,11 @@ std::string boundary_distance_message(const Polycube_layout<Point_3>& layout, co
           break;
         }
     s += "the mesh point " + point(d.farthest_mesh_point) + " (layout patch " + std::to_string(patch) + ") is " +
-         number(d.mesh_to_spline) + " from the volume's boundary: that part of the shape is not represented (likely a protrusion that the patch's map to the square shrinks to almost nothing)";
+         number(d.mesh_to_spline) + " from the volume's boundary";
+    // Much farther than the volume is from the mesh: a part is missing, not coarsely fitted.
+    s += d.mesh_to_spline > 4. * d.spline_to_mesh
+           ? ": that part of the shape is not represented (likely a protrusion that the patch's map to the square shrinks to almost nothing)"
+           : ": the faces are fitted too coarsely there (a finer grid may help)";
   } else {
     s += "the volume's boundary point " + point(d.farthest_spline_point) + " is " + number(d.spline_to_mesh) +
          " from the mesh";
@@ -108,7 +112,8 @@ struct Trivariate_model
 /// Named parameters: those of Surface_topology, Pants_decomposition, Cuboid_decomposition
 /// and layout_volume() (grid_resolution, spline_degree, number_of_spans, boundary_layer
 /// (default 0.25 here; 0 for one volume patch per cuboid), maximum_cuboid_aspect (2 here),
-/// untangle_volume (true here), ...) and `maximum_boundary_distance` (0.02: the model is
+/// untangle_volume (true here), ...), `maximum_refinements` (the cuboid stage's, default 2) and
+/// `maximum_boundary_distance` (0.02: the model is
 /// not valid when its boundary is farther from the mesh than this fraction of the mesh's
 /// bounding-box diagonal).
 /// Throws the stages' errors; an invalid layout becomes Internal_error("invalid_layout").
@@ -132,7 +137,8 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     model.layout = Decomposition()(tm, parameters::surface_topology(topology)
                                          .cut_criterion(option(np, internal_np::cut_criterion, Cut_criterion::LENGTH))
                                          .symmetry_plane(option(np, internal_np::symmetry_plane, Cut_criterion_options().symmetry_plane))
-                                         .criterion_strength(option(np, internal_np::criterion_strength, 1.0)));
+                                         .criterion_strength(option(np, internal_np::criterion_strength, 1.0))
+                                         .maximum_refinements(option(np, internal_np::maximum_refinements, 2)));
   });
   stage("layout validation", [&] { model.layout_validation = model.layout.validate(); });
   if(!model.layout_validation.is_valid())

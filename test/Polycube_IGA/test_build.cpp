@@ -232,6 +232,22 @@ TEST_CASE("build CLI refuses a volume farther from the mesh than --max-distance"
   CHECK(bad.err.find("--max-distance") != std::string::npos);
 }
 
+TEST_CASE("build CLI: --max-refinements bounds the cuboid stage's subdivisions", "[build][cli]")
+{
+  // anchor.off needs one refinement of its pants decomposition for its cutting curves.
+  const std::string xml = temp_path("anchor.xml"), report = temp_path("anchor.json");
+  const Cli_result r = run_cli("build '" + data("anchor.off") + "' -o '" + xml + "' --report '" + report +
+                               "' --max-refinements 0 --quiet");
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("cuboid_decomposition_failed") != std::string::npos);
+  CHECK(r.err.find("maximum_refinements allows more") != std::string::npos);
+  CHECK(!exists(xml));
+  CHECK(!exists(report));
+  const Cli_result bad = run_cli("build '" + data("anchor.off") + "' -o '" + xml + "' --max-refinements 9");
+  CHECK(bad.exit_code == 2);
+  CHECK(bad.err.find("--max-refinements") != std::string::npos);
+}
+
 TEST_CASE("the boundary layer raises the torus' minimum scaled Jacobian", "[build][boundary_layer]")
 {
   // Without the layer, cuboid edges on the smooth surface have det J -> 0 (Layout_padding.h).

@@ -138,7 +138,7 @@ int run_build(const Arguments& args)
   Parsed_arguments a(args, {"--merge-duplicates", "--drop-isolated", "--no-self-intersection-test", "--allow-invalid", "--quiet",
                       "--no-untangle"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
-                      "--boundary-layer", "--max-distance"});
+                      "--boundary-layer", "--max-distance", "--max-refinements"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
   if(out.empty()) throw PI::Invalid_input_error("bad_arguments", "build needs -o OUT.xml");
@@ -147,6 +147,7 @@ int run_build(const Arguments& args)
   const PI::Cut_criterion criterion = PI::parse_cut_criterion(a.get("--criterion", "length"));
   const double layer = fraction_option(a, "--boundary-layer", 0.25, 0., 0.5);
   const double max_distance = fraction_option(a, "--max-distance", 0.02, 0., 1.);
+  const int refinements = positive_option(a, "--max-refinements", 2, 0, 5);
   const bool verbose = !a.has("--quiet") && isatty(2);
   auto progress = [&](const std::string& stage) {
     if(verbose) std::cerr << "polycube_iga: " << stage << "...\n";
@@ -159,7 +160,8 @@ int run_build(const Arguments& args)
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto model = PI::build_trivariate_model(
     in.mesh, PI::parameters::grid_resolution(grid).spline_degree(degree).cut_criterion(criterion).boundary_layer(layer)
-      .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance),
+      .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
+      .maximum_refinements(refinements),
     progress);
 
   const bool write_volume = model.is_valid() || a.has("--allow-invalid");
@@ -198,7 +200,8 @@ Register_command build_command("build", {
   "the whole chain: mesh -> polycube layout -> multipatch B-spline volume (G+Smo XML)",
   "usage: polycube_iga build MESH -o OUT.xml [--vtu OUT.vtu] [--layout-vtu L.vtu] [--layout-json L.json]\n"
   "                          [--report R.json] [--grid N] [--degree P] [--criterion length|minima|symmetry]\n"
-  "                          [--boundary-layer T] [--max-distance F] [--no-untangle] [--allow-invalid]\n"
+  "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--no-untangle]\n"
+  "                          [--allow-invalid]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
   "  --layout-vtu L    the polycube layout on the surface: patches, arcs, nodes\n"
@@ -212,6 +215,8 @@ Register_command build_command("build", {
   "                    with poor or negative det J are moved to untangle them (surface kept)\n"
   "  --max-distance F  largest Hausdorff distance between the volume's boundary and the mesh,\n"
   "                    as a fraction of the bounding-box diagonal (default 0.02)\n"
+  "  --max-refinements R  midpoint subdivisions of the whole mesh the cuboid stage may add when\n"
+  "                    a cutting curve or arc finds no room (default 2; each multiplies the faces by 4)\n"
   "  --allow-invalid   write the volume even if it is not valid\n"
   "  exit 1 with nonpositive_jacobian when some det J is not certified positive, or with\n"
   "  boundary_distance when the boundary is farther than --max-distance (nothing written)\n",

@@ -280,7 +280,8 @@ public:
         return L;
       } catch(const Internal_error& e) {
         if(attempt >= max_refinements)
-          throw Internal_error(e.reason(), std::string(e.what()) + " (after " + std::to_string(attempt) + " refinement(s))");
+          throw Internal_error(e.reason(), std::string(e.what()) + " (after " + std::to_string(attempt) +
+                                             " refinement(s) of the mesh; maximum_refinements allows more)");
       }
       if(pd) {
         pd = refined_pants_decomposition(tm, *pd);
