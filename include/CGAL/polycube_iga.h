@@ -169,6 +169,12 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   model.maximum_boundary_distance = option(np, internal_np::maximum_boundary_distance, 0.02);
   if(model.volume.quality_evaluated && !(model.volume.distance.relative <= model.maximum_boundary_distance))
     model.warnings.push_back(internal::boundary_distance_message(model.layout, model.volume.distance, model.maximum_boundary_distance));
+  // Untangling moves inner control points only: a fitted boundary face that turns over keeps
+  // its negative det J whatever it does.
+  for(const auto& f : model.volume.distance.folded_sides)
+    model.warnings.push_back("volume patch " + std::to_string(f.side.patch) + ": its boundary side " + std::to_string(f.side.side) +
+                             " turns over (" + std::to_string(f.samples) +
+                             " samples face against the mesh); untangling cannot repair it, the fitted surface must change");
   if(model.volume.quality_evaluated)
     for(std::size_t c = 0; c < model.volume.quality.certified.size(); ++c)
       if(!model.volume.quality.certified[c].certified_positive)

@@ -133,6 +133,7 @@ TEST_CASE("build gives a certified valid volume for a torus", "[build]")
     for(const auto& b : model.volume.quality.certified) CHECK(b.lower_bound > 0.);
     CHECK(model.volume.quality.overall_sampled.min_scaled_jacobian > 0.);
     CHECK(model.volume.distance.relative < 0.02);
+    CHECK(model.volume.distance.folded_sides.empty()); // no boundary face turns over
     // (The finer mesh may warn about flat triangles in a patch's map to the square.)
     for(const auto& w : model.warnings) {
       INFO(w);
@@ -162,6 +163,7 @@ TEST_CASE("untangling makes the sphere's volume certified valid", "[build][untan
   // The surface sides are bit-identical, so the distance to the mesh is unchanged.
   CHECK(model.volume.distance.relative == plain.volume.distance.relative);
   CHECK(model.volume.distance.relative < 0.02);
+  CHECK(model.volume.distance.folded_sides.empty());
   CHECK(model.volume.quality.interfaces.max_gap < 1e-9);
   for(std::size_t p = 0; p < model.volume.volume.number_of_patches(); ++p)
     for(const PI::Patch_side& b : model.volume.volume.boundaries())

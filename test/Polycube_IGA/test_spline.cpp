@@ -21,6 +21,8 @@
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/boost/graph/generators.h>
 
+#include <set>
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -664,6 +666,41 @@ TEST_CASE("two-sided Hausdorff distance to a triangle mesh", "[spline]")
     touches = touches || cube.point(v).x() == 1.;
   CHECK(touches);
   CHECK(h.farthest_spline_point[0] <= 0.5 + 1e-12);
+}
+
+TEST_CASE("boundary sides whose fitted face turns over are named", "[spline]")
+{
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Mesh = CGAL::Surface_mesh<K::Point_3>;
+  Mesh cube;
+  CGAL::make_hexahedron(K::Point_3(0, 0, 0), K::Point_3(1, 0, 0), K::Point_3(1, 1, 0), K::Point_3(0, 1, 0),
+                        K::Point_3(0, 1, 1), K::Point_3(0, 0, 1), K::Point_3(1, 0, 1), K::Point_3(1, 1, 1), cube);
+  CGAL::Polygon_mesh_processing::triangulate_faces(cube);
+  PI::Multipatch_volume plain;
+  plain.add_patch(unit_cube(3));
+  CHECK(PI::boundary_hausdorff_distance(plain, cube, 16).folded_sides.empty());
+  // Swap the two middle columns of the top side (z = 1) in x, past each other: the face
+  // doubles back on itself in the middle (dx/du = -0.3 at u = 1/2), its normal points down
+  // there, and it stays on the plane z = 1.
+  Tensor_bspline_volume folded = unit_cube(3);
+  for(int j = 0; j < 4; ++j) {
+    folded.control_point({1, j, 3}).x() = 1.2;
+    folded.control_point({2, j, 3}).x() = -0.2;
+  }
+  PI::Multipatch_volume mf;
+  mf.add_patch(folded);
+  const auto d = PI::boundary_hausdorff_distance(mf, cube, 16);
+  CHECK(d.spline_to_mesh < 0.1);
+  std::set<int> sides;
+  for(const auto& f : d.folded_sides) {
+    CHECK(f.side.patch == 0);
+    CHECK(f.samples > 0);
+    sides.insert(f.side.side);
+  }
+  CHECK(sides.count(6) == 1);
+  CHECK(sides.count(1) == 0); // x = 0, x = 1 and the bottom are untouched
+  CHECK(sides.count(2) == 0);
+  CHECK(sides.count(5) == 0);
 }
 
 TEST_CASE("bad input gives Invalid_input_error, never a crash", "[spline]")

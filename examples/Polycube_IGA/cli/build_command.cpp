@@ -117,6 +117,10 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
     point("farthest_mesh_point", V.distance.farthest_mesh_point);
     point("farthest_spline_point", V.distance.farthest_spline_point);
     w.end_object();
+    w.key("folded_boundary_sides").begin_array();
+    for(const auto& f : V.distance.folded_sides)
+      w.begin_object().member("patch", f.side.patch).member("side", f.side.side).member("samples", f.samples).end_object();
+    w.end_array();
     w.key("interfaces").begin_object()
       .member("count", V.volume.interfaces().size())
       .member("max_gap", V.quality.interfaces.max_gap)

@@ -45,6 +45,16 @@ struct Boundary_distance
   std::array<double, 3> farthest_spline_point{{0., 0., 0.}}, farthest_mesh_point{{0., 0., 0.}};
   /// The mesh face at `farthest_mesh_point` (its face, or a face around it for a vertex).
   std::size_t farthest_mesh_face = 0;
+  /// Boundary sides whose fitted face turns over: at `samples` of their sample points (side
+  /// corners excluded) the side's outward normal points against the normal of the nearest
+  /// mesh face (angle above 120 degrees, the mesh's orientation taken from the majority of
+  /// all samples). Moving inner control points cannot repair such a side.
+  struct Folded_side
+  {
+    Patch_side side;
+    std::size_t samples = 0;
+  };
+  std::vector<Folded_side> folded_sides;
 };
 
 /// Two-sided Hausdorff distance between the boundary of `mp` (its declared boundary sides,
@@ -77,6 +87,9 @@ Boundary_distance boundary_hausdorff_distance(const Multipatch_volume& mp, const
 
   // Sample and triangulate the boundary sides.
   std::vector<Point_3> spline_points;
+  std::vector<Eigen::Vector3d> spline_normals; // outward normal of the side at each point
+  std::vector<std::size_t> spline_side;        // index in `sides`
+  std::vector<bool> spline_corner;             // a corner of its side
   std::vector<Triangle_3> spline_triangles;
   for(const Patch_side& ps : sides) {
     const Tensor_bspline_volume& v = mp.patch(ps.patch);
@@ -90,8 +103,13 @@ Boundary_distance boundary_hausdorff_distance(const Multipatch_volume& mp, const
         s[std::size_t(d)] = double(side_parameter(ps.side));
         s[std::size_t(t0)] = double(i) / double(n0 - 1);
         s[std::size_t(t1)] = double(j) / double(n1 - 1);
-        const Eigen::Vector3d x = v.evaluate(v.from_normalized(s));
-        spline_points.emplace_back(x.x(), x.y(), x.z());
+        const auto dv = v.derivatives(v.from_normalized(s), 1);
+        spline_points.emplace_back(dv.point.x(), dv.point.y(), dv.point.z());
+        // Outward for a patch with det J > 0: (2e-1) d_{d+1} x d_{d+2}, directions cyclic.
+        const Eigen::Vector3d n = dv.first[std::size_t((d + 1) % 3)].cross(dv.first[std::size_t((d + 2) % 3)]);
+        spline_normals.push_back((side_parameter(ps.side) == 1 ? 1. : -1.) * n);
+        spline_side.push_back(std::size_t(&ps - sides.data()));
+        spline_corner.push_back((i == 0 || i == n0 - 1) && (j == 0 || j == n1 - 1));
       }
     auto at = [&](int i, int j) { return spline_points[base + std::size_t(i) + std::size_t(n0) * std::size_t(j)]; };
     for(int j = 0; j + 1 < n1; ++j)
@@ -110,13 +128,35 @@ Boundary_distance boundary_hausdorff_distance(const Multipatch_volume& mp, const
   auto as_array = [](const Point_3& p) {
     return std::array<double, 3>{{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
   };
-  for(const Point_3& p : spline_points) {
-    const double d = std::sqrt(CGAL::to_double(mesh_tree.squared_distance(p)));
+  // Cosine between each sample's outward normal and its nearest mesh face's normal.
+  std::vector<double> cosine(spline_points.size(), 0.);
+  double orientation = 0.;
+  const auto mvpm = get(CGAL::vertex_point, mesh);
+  for(std::size_t i = 0; i < spline_points.size(); ++i) {
+    const Point_3& p = spline_points[i];
+    const auto hit = mesh_tree.closest_point_and_primitive(p);
+    const double d = std::sqrt(CGAL::to_double(CGAL::squared_distance(p, hit.first)));
     if(d > r.spline_to_mesh) {
       r.spline_to_mesh = d;
       r.farthest_spline_point = as_array(p);
     }
+    const auto h = halfedge(hit.second, mesh);
+    const auto fn = CGAL::cross_product(get(mvpm, target(h, mesh)) - get(mvpm, source(h, mesh)),
+                                        get(mvpm, target(next(h, mesh), mesh)) - get(mvpm, target(h, mesh)));
+    const Eigen::Vector3d m(CGAL::to_double(fn.x()), CGAL::to_double(fn.y()), CGAL::to_double(fn.z()));
+    const double l = m.norm() * spline_normals[i].norm();
+    if(l > 0.) cosine[i] = m.dot(spline_normals[i]) / l;
+    orientation += cosine[i];
   }
+  // A fold: more than 120 degrees against the mesh, once the mesh's own orientation (outward
+  // or inward, by the majority) is factored out. Corners do not count: there the normal is
+  // set by the corner's angle between the two arcs (the layout's), not by the fit, and a
+  // valid volume can have a reflex one (sphere.off).
+  std::vector<std::size_t> folded(sides.size(), 0);
+  for(std::size_t i = 0; i < cosine.size(); ++i)
+    if(!spline_corner[i] && (orientation >= 0. ? cosine[i] : -cosine[i]) < -0.5) ++folded[spline_side[i]];
+  for(std::size_t k = 0; k < sides.size(); ++k)
+    if(folded[k] > 0) r.folded_sides.push_back({sides[k], folded[k]});
   r.spline_samples = spline_points.size();
 
   using Soup_primitive = CGAL::AABB_triangle_primitive<K, typename std::vector<Triangle_3>::const_iterator>;
