@@ -15,7 +15,8 @@
 //     over the surface patches at n, d_n = thickness x the shortest arc at n);
 //   * every arc a gets an inner arc a' (the chord of its inner nodes plus half the arc's
 //     deviation from its own chord: straight arcs and flat faces stay so, round ones get
-//     half as round) and a wall: the quad between a and a', closed by the straight radial
+//     half as round; an arc that bulges into the solid by more than the layer's depth,
+//     around a hole, keeps enough of it to stay inside) and a wall: the quad between a and a', closed by the straight radial
 //     segments n -> n';
 //   * every patch p gets an inner patch p' spanned by the inner arcs of its sides (discrete
 //     Coons + harmonic grid, like every interior patch);
@@ -167,12 +168,27 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
     // (Offsetting each sample along its normal makes a box's core edges reflex; keeping the
     // full curvature, as an offset circle does, leaves the core's cross-section corners at
     // about 180 degrees: the torus turned invalid on a finer mesh of the same shape.)
+    // An arc that bulges into the solid (around a hole) by more than the layer is deep would,
+    // with half its bulge, have an inner arc that cuts across the hole, and the slab under it
+    // would lie outside the solid. It keeps enough of its bulge (sagitta s, depth d: a
+    // fraction 1 - d / 2s) for its inner arc to stay at least d/2 below it; shallow
+    // bulges keep half, like convex arcs (all of a shallow one spoils the torus' core).
+    const Eigen::Vector3d arc_normal =
+      (node_normal[arc.nodes[0]].normalized() + node_normal[arc.nodes[1]].normalized()).normalized();
+    double sagitta = 0.;
+    for(int k = 1; k < N; ++k) {
+      const double t = double(k) / N;
+      const Eigen::Vector3d chord_out = (1. - t) * outer[arc.nodes[0]] + t * outer[arc.nodes[1]];
+      sagitta = std::max(sagitta, -(samples.arc_samples[a][std::size_t(k)] - chord_out).dot(arc_normal));
+    }
+    const double arc_depth = std::min(depth[arc.nodes[0]], depth[arc.nodes[1]]);
+    const double kept = sagitta > arc_depth ? 1. - arc_depth / (2. * sagitta) : 0.5;
     std::vector<Eigen::Vector3d> s(samples.arc_samples[a]);
     for(int k = 1; k < N; ++k) {
       const double t = double(k) / N;
       const Eigen::Vector3d chord_out = (1. - t) * outer[arc.nodes[0]] + t * outer[arc.nodes[1]];
       const Eigen::Vector3d chord_in = (1. - t) * inner[arc.nodes[0]] + t * inner[arc.nodes[1]];
-      s[std::size_t(k)] = chord_in + 0.5 * (samples.arc_samples[a][std::size_t(k)] - chord_out);
+      s[std::size_t(k)] = chord_in + kept * (samples.arc_samples[a][std::size_t(k)] - chord_out);
     }
     s.front() = inner[arc.nodes[0]];
     s.back() = inner[arc.nodes[1]];
