@@ -17,6 +17,7 @@
 #include <CGAL/Polycube_IGA/Surface_topology.h>
 #include <CGAL/Polycube_IGA/parameters.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <functional>
@@ -30,6 +31,10 @@ namespace CGAL {
 namespace Polycube_IGA {
 
 namespace internal {
+
+/// A mesh point much farther from the volume than any volume point is from the mesh: a part
+/// of the shape is missing (not fitted too coarsely), which no finer grid recovers.
+inline bool part_missing(const Boundary_distance& d) { return d.mesh_to_spline > 4. * d.spline_to_mesh; }
 
 /// Says where the boundary is too far from the mesh. A mesh point much farther from the
 /// volume than any volume point is from the mesh means a part of the shape is missing,
@@ -56,8 +61,7 @@ std::string boundary_distance_message(const Polycube_layout<Point_3>& layout, co
         }
     s += "the mesh point " + point(d.farthest_mesh_point) + " (layout patch " + std::to_string(patch) + ") is " +
          number(d.mesh_to_spline) + " from the volume's boundary";
-    // Much farther than the volume is from the mesh: a part is missing, not coarsely fitted.
-    s += d.mesh_to_spline > 4. * d.spline_to_mesh
+    s += part_missing(d)
            ? ": that part of the shape is not represented (likely a protrusion that the patch's map to the square shrinks to almost nothing)"
            : ": the faces are fitted too coarsely there (a finer grid may help)";
   } else {
@@ -65,6 +69,20 @@ std::string boundary_distance_message(const Polycube_layout<Point_3>& layout, co
          " from the mesh";
   }
   return s;
+}
+
+/// Reason codes of Trivariate_model::invalidity_reasons() for volume `v`.
+inline std::vector<std::string> invalidity_reasons(const Layout_volume_result& v, double maximum_boundary_distance)
+{
+  if(!v.quality_evaluated || v.quality.certified.empty()) return {"quality_not_evaluated"};
+  std::vector<std::string> reasons;
+  for(const auto& b : v.quality.certified)
+    if(!b.certified_positive) {
+      reasons.push_back("nonpositive_jacobian");
+      break;
+    }
+  if(!(v.distance.relative <= maximum_boundary_distance)) reasons.push_back("boundary_distance");
+  return reasons;
 }
 
 } // namespace internal
@@ -89,18 +107,11 @@ struct Trivariate_model
   /// `quality_not_evaluated`, `nonpositive_jacobian` (a patch's det J is not certified
   /// positive), `boundary_distance` (the boundary is farther from the mesh than
   /// `maximum_boundary_distance`).
-  std::vector<std::string> invalidity_reasons() const
-  {
-    if(!volume.quality_evaluated || volume.quality.certified.empty()) return {"quality_not_evaluated"};
-    std::vector<std::string> reasons;
-    for(const auto& b : volume.quality.certified)
-      if(!b.certified_positive) {
-        reasons.push_back("nonpositive_jacobian");
-        break;
-      }
-    if(!(volume.distance.relative <= maximum_boundary_distance)) reasons.push_back("boundary_distance");
-    return reasons;
-  }
+  std::vector<std::string> invalidity_reasons() const { return internal::invalidity_reasons(volume, maximum_boundary_distance); }
+
+  /// The grid resolutions the volume was built with, in order; the last valid one, or else
+  /// the first, is `volume` (see `maximum_grid_resolution` in build_trivariate_model()).
+  std::vector<int> grid_attempts;
 
   /// True when every patch's det J is certified positive and the boundary is within
   /// `maximum_boundary_distance` of the mesh.
@@ -112,10 +123,11 @@ struct Trivariate_model
 /// Named parameters: those of Surface_topology, Pants_decomposition, Cuboid_decomposition
 /// and layout_volume() (grid_resolution, spline_degree, number_of_spans, boundary_layer
 /// (default 0.25 here; 0 for one volume patch per cuboid), maximum_cuboid_aspect (2 here),
-/// untangle_volume (true here), ...), `maximum_refinements` (the cuboid stage's, default 2) and
+/// untangle_volume (true here), ...), `maximum_refinements` (the cuboid stage's, default 2),
 /// `maximum_boundary_distance` (0.02: the model is
 /// not valid when its boundary is farther from the mesh than this fraction of the mesh's
-/// bounding-box diagonal).
+/// bounding-box diagonal) and `maximum_grid_resolution` (twice grid_resolution: an invalid
+/// volume is rebuilt on grids twice as fine up to this; equal to grid_resolution, never).
 /// Throws the stages' errors; an invalid layout becomes Internal_error("invalid_layout").
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
 auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values(),
@@ -151,7 +163,41 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   volume_defaults.maximum_cuboid_aspect = 2.;
   // Inner control points moved where det J is poor or negative (Volume_untangling.h).
   volume_defaults.untangle = true;
-  stage("volume construction", [&] { model.volume = layout_volume(model.layout, np, volume_defaults); });
+  const Layout_volume_options volume_options = layout_volume_options(np, volume_defaults);
+  model.maximum_boundary_distance = option(np, internal_np::maximum_boundary_distance, 0.02);
+  stage("volume construction", [&] { model.volume = layout_volume(model.layout, volume_options); });
+  model.grid_attempts.push_back(volume_options.sampling.grid_segments);
+  // An invalid volume is rebuilt on grids twice as fine, up to maximum_grid_resolution (by
+  // default one doubling): more samples and spans give the faces and the untangling room
+  // (the mushroom's cube is valid at 24 and 32 samples per side, not at 16). The first
+  // valid result is kept, else the one at the requested resolution. A missing part of the
+  // shape (femur's shaft) is not retried: no grid brings it back.
+  const int maximum_grid = int(option(np, internal_np::maximum_grid_resolution, 2 * volume_options.sampling.grid_segments));
+  if(maximum_grid > 1024)
+    throw Invalid_input_error("invalid_parameter", "maximum_grid_resolution must be at most 1024 samples per patch side");
+  auto worth_retrying = [&] {
+    const std::vector<std::string> reasons = model.invalidity_reasons();
+    const bool far = std::find(reasons.begin(), reasons.end(), "boundary_distance") != reasons.end();
+    return !reasons.empty() && model.volume.quality_evaluated && !(far && internal::part_missing(model.volume.distance));
+  };
+  for(int N = 2 * volume_options.sampling.grid_segments; N <= maximum_grid && worth_retrying(); N *= 2) {
+    Layout_volume_options finer = volume_options;
+    finer.sampling.grid_segments = N;
+    Layout_volume_result r;
+    stage("volume construction, grid " + std::to_string(N), [&] { r = layout_volume(model.layout, finer); });
+    model.grid_attempts.push_back(N);
+    const std::vector<std::string> reasons = internal::invalidity_reasons(r, model.maximum_boundary_distance);
+    if(reasons.empty()) {
+      model.warnings.push_back("the volume is built on a grid of " + std::to_string(N) + " samples per patch side: at " +
+                               std::to_string(model.volume.samples.segments) + " it was not valid");
+      model.volume = std::move(r);
+    } else {
+      std::string why;
+      for(const auto& x : reasons) why += (why.empty() ? "" : ", ") + x;
+      model.warnings.push_back("a grid of " + std::to_string(N) + " samples per patch side was tried too and is not valid either (" +
+                               why + ")");
+    }
+  }
   for(std::size_t p = 0; p < model.volume.samples.flipped_triangles.size(); ++p)
     if(model.volume.samples.flipped_triangles[p] > 0)
       model.warnings.push_back("patch " + std::to_string(p) + ": " + std::to_string(model.volume.samples.flipped_triangles[p]) +
@@ -166,7 +212,6 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     model.warnings.push_back("untangling left a negative det J (smallest relative det " +
                              std::to_string(u.min_relative_determinant_after) + ", was " +
                              std::to_string(u.min_relative_determinant_before) + ")");
-  model.maximum_boundary_distance = option(np, internal_np::maximum_boundary_distance, 0.02);
   if(model.volume.quality_evaluated && !(model.volume.distance.relative <= model.maximum_boundary_distance))
     model.warnings.push_back(internal::boundary_distance_message(model.layout, model.volume.distance, model.maximum_boundary_distance));
   // Untangling moves inner control points only: a fitted boundary face that turns over keeps

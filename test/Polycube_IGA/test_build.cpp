@@ -37,8 +37,9 @@ TEST_CASE("build turns every surface class into a multipatch volume", "[build]")
   for(const char* name : {"sphere.off", "torus.obj", "head.off", "eight.off"}) {
     INFO(name);
     const Mesh m = load(data(name));
-    const auto model = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).number_of_spans(2));
+    const auto model = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).number_of_spans(2).maximum_grid_resolution(8));
     REQUIRE(model.layout_validation.is_valid());
+    CHECK(model.grid_attempts == std::vector<int>{8});
     const auto& V = model.volume;
     // Cores (pieces of cuboids, long tubes being chains) and one slab per piece of surface
     // patch (the default boundary layer): every cuboid and surface patch is covered.
@@ -113,9 +114,39 @@ TEST_CASE("build CLI rejects bad input and bad options without writing", "[build
   r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --boundary-layer 0.7");
   CHECK(r.exit_code == 2);
   CHECK(r.err.find("--boundary-layer") != std::string::npos);
+  r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --grid 16 --max-grid 8");
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("--max-grid") != std::string::npos);
   r = run_cli("build '" + data("torus.obj") + "'");
   CHECK(r.exit_code == 2);
   CHECK(!exists(xml));
+}
+
+TEST_CASE("build gives a certified valid volume for a disk, on a finer grid when the first is not valid", "[build]")
+{
+  // mushroom.off: one cube, capped by its boundary loop, whose sides climb the stem and
+  // wrap the head (a chain of 2 along its bend). At 8 samples per side its boundary is 2.05%
+  // of the diagonal from the mesh; the build retries at 16 (one doubling by default), which
+  // is valid, and says so.
+  const Mesh m = load(data("mushroom.off"));
+  const auto once = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).maximum_grid_resolution(8));
+  CHECK(once.layout.layout_class == PI::Layout_class::disk);
+  CHECK(once.grid_attempts == std::vector<int>{8});
+  CHECK_FALSE(once.is_valid());
+  const auto model = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8));
+  CHECK(model.grid_attempts == std::vector<int>{8, 16});
+  REQUIRE(model.is_valid());
+  CHECK(model.volume.samples.segments == 16);
+  for(const auto& b : model.volume.quality.certified) CHECK(b.lower_bound > 0.);
+  CHECK(model.volume.quality.overall_sampled.min_scaled_jacobian > 0.);
+  CHECK(model.volume.distance.relative < 0.02);
+  CHECK(model.volume.distance.folded_sides.empty());
+  bool said = false;
+  for(const auto& w : model.warnings) said = said || w.find("grid of 16") != std::string::npos;
+  CHECK(said);
+  // Deterministic, retry included.
+  const auto again = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8));
+  CHECK(again.volume.volume.patch(0).control_points() == model.volume.volume.patch(0).control_points());
 }
 
 TEST_CASE("build gives a certified valid volume for a torus", "[build]")
@@ -148,9 +179,10 @@ TEST_CASE("untangling makes the sphere's volume certified valid", "[build][untan
   // The sphere's one cube with its boundary layer folds near the belt nodes; moving the
   // inner control points (Volume_untangling.h) repairs it without touching the surface.
   const Mesh m = load(data("sphere.off"));
-  const auto plain = PI::build_trivariate_model(m, PI::parameters::untangle_volume(false));
+  const auto plain = PI::build_trivariate_model(m, PI::parameters::untangle_volume(false).maximum_grid_resolution(16));
   const auto model = PI::build_trivariate_model(m);
   CHECK(model.layout.layout_class == PI::Layout_class::sphere);
+  CHECK(model.grid_attempts == std::vector<int>{16}); // valid at the default grid: no retry
   CHECK_FALSE(plain.is_valid());
   CHECK(plain.volume.untangling.patches.empty());
   REQUIRE(model.is_valid());
@@ -194,7 +226,7 @@ TEST_CASE("build CLI writes a certified torus volume without --allow-invalid", "
 TEST_CASE("a boundary farther than maximum_boundary_distance makes the model invalid, with the place named", "[build][distance]")
 {
   const Mesh m = load(data("torus.obj"));
-  const auto strict = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).number_of_spans(2).maximum_boundary_distance(1e-9));
+  const auto strict = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).number_of_spans(2).maximum_boundary_distance(1e-9).maximum_grid_resolution(8));
   const auto& d = strict.volume.distance;
   REQUIRE(d.relative > 1e-9);
   CHECK_FALSE(strict.is_valid());
@@ -255,7 +287,7 @@ TEST_CASE("the boundary layer raises the torus' minimum scaled Jacobian", "[buil
   // Without the layer, cuboid edges on the smooth surface have det J -> 0 (Layout_padding.h).
   const Mesh m = load(data("torus.obj"));
   const auto with = PI::build_trivariate_model(m);
-  const auto without = PI::build_trivariate_model(m, PI::parameters::boundary_layer(0.));
+  const auto without = PI::build_trivariate_model(m, PI::parameters::boundary_layer(0.).maximum_grid_resolution(16));
   REQUIRE(with.is_valid());
   CHECK(without.volume.volume.number_of_patches() == without.layout.cuboids.size());
   CHECK(with.volume.volume.number_of_patches() == with.layout.cuboids.size() + with.layout.number_of_surface_patches());

@@ -66,6 +66,27 @@ TEST_CASE("cuboid decomposition of a disk is one capped cube", "[cuboid]")
   CHECK(L.cuboids.size() == 1);
   CHECK(L.number_of_surface_patches() == 5);
   check_layout(m, L);
+  // The cube's bottom (the surface patch sharing no node with the cap) holds a fifth of the
+  // area, each side a share of the rest: a fixed inner square gave it the mushroom's whole
+  // stem and head, which its map to the square then squeezed.
+  const double total = CGAL::to_double(CGAL::Polygon_mesh_processing::area(L.mesh));
+  std::array<std::size_t, 4> cap{};
+  for(const auto& pa : L.patches)
+    if(pa.kind == Layout::CAP) cap = pa.corners;
+  int bottoms = 0;
+  for(const auto& pa : L.patches) {
+    if(pa.kind != Layout::SURFACE) continue;
+    const double share = CGAL::to_double(CGAL::Polygon_mesh_processing::area(pa.faces, L.mesh)) / total;
+    bool touches_cap = false;
+    for(std::size_t n : pa.corners) touches_cap = touches_cap || std::find(cap.begin(), cap.end(), n) != cap.end();
+    INFO("share " << share << (touches_cap ? " (side)" : " (bottom)"));
+    if(touches_cap) CHECK(share > 0.1);
+    else {
+      ++bottoms;
+      CHECK(share == Approx(0.2).margin(0.03));
+    }
+  }
+  CHECK(bottoms == 1);
 }
 
 TEST_CASE("cuboid decomposition of a cylinder is a chain of cuboids", "[cuboid]")

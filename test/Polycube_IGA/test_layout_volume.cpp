@@ -7,6 +7,7 @@
 
 #include "layout_fixtures.h"
 
+#include <CGAL/Polycube_IGA/Cuboid_decomposition.h>
 #include <CGAL/Polycube_IGA/IO/gismo_xml.h>
 #include <CGAL/Polycube_IGA/Layout_volume.h>
 #include <CGAL/Polycube_IGA/Patch_sampling.h>
@@ -320,6 +321,79 @@ TEST_CASE("a boundary layer tiles the chain with cores and one slab per surface 
   }
 }
 
+TEST_CASE("the boundary layer's depth is capped by the solid's thickness under a node", "[layout_volume][boundary_layer]")
+{
+  // The unit cube: a corner's normal is the diagonal, whose ray leaves the cube through the
+  // opposite corner at distance sqrt(3). A cap of 0.2 of that is 0.2 along every axis.
+  const Layout L = box_chain_layout(1, 3);
+  PI::Patch_sampling_options so;
+  so.grid_segments = 6;
+  const PI::Patch_grids g = PI::sample_layout_patches(L, so);
+  const std::size_t nn = L.nodes.size(), na = L.arcs.size();
+  for(const double fraction : {0.2, 0.}) {
+    PI::Padding_options po;
+    po.thickness = 0.45;
+    po.maximum_thickness_fraction = fraction;
+    const PI::Padded_layout<Point> P = PI::pad_layout(L, g, po);
+    const double expected = fraction > 0. ? 0.2 : 0.45 / std::sqrt(3.); // per axis
+    for(std::size_t n = 0; n < nn; ++n) {
+      const auto& radial = P.samples.arc_samples[2 * na + n];
+      const Eigen::Vector3d outer = radial.front(), inner = radial.back();
+      INFO("fraction " << fraction << " node " << n);
+      for(int i = 0; i < 3; ++i)
+        CHECK(inner[i] == Approx(outer[i] < 0.5 ? expected : 1. - expected).margin(1e-9));
+    }
+  }
+}
+
+TEST_CASE("the boundary layer stays inside a thin blade", "[layout_volume][boundary_layer]")
+{
+  // blade.off is a few percent thick: a quarter of its arcs would push every inner node
+  // through the opposite face (most of its nodes), building slabs outside the solid.
+  const Mesh m = load(data("blade.off"));
+  const Layout L = PI::Cuboid_decomposition<Mesh>()(m);
+  PI::Patch_sampling_options so;
+  so.grid_segments = 8;
+  const PI::Patch_grids g = PI::sample_layout_patches(L, so);
+  const std::size_t nn = L.nodes.size(), na = L.arcs.size();
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, CGAL::AABB_face_graph_triangle_primitive<Mesh>>>;
+  const Tree tree(faces(L.mesh).first, faces(L.mesh).second, L.mesh);
+  // Inner nodes whose radial segment (from just below the surface) crosses the mesh.
+  auto crossing = [&](const PI::Padded_layout<Point>& P) {
+    std::size_t out = 0;
+    for(std::size_t n = 0; n < nn; ++n) {
+      const auto& radial = P.samples.arc_samples[2 * na + n];
+      const Eigen::Vector3d a = radial.front() + 1e-6 * (radial.back() - radial.front()), b = radial.back();
+      if(tree.do_intersect(Kernel::Segment_3(Point(a.x(), a.y(), a.z()), Point(b.x(), b.y(), b.z())))) ++out;
+    }
+    return out;
+  };
+  PI::Padding_options uncapped;
+  uncapped.maximum_thickness_fraction = 0.;
+  uncapped.maximum_depth_slope = 0.;
+  CHECK(crossing(PI::pad_layout(L, g, uncapped)) > nn / 2);
+
+  const PI::Padding_options po;
+  const PI::Padded_layout<Point> P = PI::pad_layout(L, g, po);
+  CHECK(crossing(P) == 0);
+  std::vector<Eigen::Vector3d> outer(nn), normal(nn);
+  std::vector<double> depth(nn);
+  for(std::size_t n = 0; n < nn; ++n) {
+    const auto& radial = P.samples.arc_samples[2 * na + n];
+    outer[n] = radial.front();
+    depth[n] = (radial.back() - radial.front()).norm();
+    normal[n] = (radial.front() - radial.back()) / depth[n];
+    CHECK(depth[n] > 0.);
+  }
+  const std::vector<double> t = PI::internal::inward_thickness(L.mesh, outer, normal);
+  for(std::size_t n = 0; n < nn; ++n) CHECK(depth[n] <= po.maximum_thickness_fraction * t[n] * (1. + 1e-9));
+  // Along every arc the depth changes by at most 5% of the arc's length.
+  for(std::size_t a = 0; a < na; ++a) {
+    const double length = PI::internal::cumulative_lengths(g.arc_samples[a]).back();
+    CHECK(std::abs(depth[L.arcs[a].nodes[0]] - depth[L.arcs[a].nodes[1]]) <= po.maximum_depth_slope * length * (1. + 1e-9));
+  }
+}
+
 TEST_CASE("a long tube becomes a chain of cube-like cuboids cut at its arc-length fractions", "[layout_volume][chains]")
 {
   // One 4 x 1 x 1 box: a tube along x, 4 times as long as wide.
@@ -392,6 +466,33 @@ TEST_CASE("a long bent tube is valid as a chain", "[layout_volume][chains]")
   for(const auto& b : chain.quality.certified) CHECK(b.certified_positive);
   CHECK(chain.quality.overall_sampled.min_scaled_jacobian >= single.quality.overall_sampled.min_scaled_jacobian);
   CHECK(chain.distance.relative <= single.distance.relative + 1e-9);
+}
+
+TEST_CASE("a short tube bent by 120 degrees becomes a chain of 2", "[layout_volume][chains]")
+{
+  // The unit cube bent about the axis x = -0.4, y = 0.5 (... z) through 120 degrees: its arcs
+  // along the bend are 0.84 to 2.93 long, 1.9 times its width on average, below the aspect
+  // rule's 2; their ends' tangents turn by 120 degrees, twice the 60 allowed.
+  const double R = 0.9, turn = 2. * pi / 3.;
+  const Layout L = box_chain_layout(1, 4, false, [&](double x, double y, double z) {
+    const double r = R + (y - 0.5), phi = turn * x;
+    return Point(r * std::sin(phi), r * std::cos(phi), z);
+  });
+  const PI::Patch_grids G = PI::sample_layout_patches(L, small_options(8).sampling);
+  PI::Cuboid_chain_options co;
+  CHECK(PI::split_long_cuboids(L, G, small_options(8).sampling, co).pieces == std::vector<int>{2});
+  co.maximum_bend = 0.;
+  CHECK(PI::split_long_cuboids(L, G, small_options(8).sampling, co).pieces == std::vector<int>{1});
+  // Unbent, the cube stays one piece.
+  const Layout cube = box_chain_layout(1, 4);
+  CHECK(PI::split_long_cuboids(cube, PI::sample_layout_patches(cube, small_options(8).sampling), small_options(8).sampling).pieces ==
+        std::vector<int>{1});
+  // Two pieces of 60 degrees are certified valid; the layer and chains of build's defaults.
+  PI::Layout_volume_options o = small_options(8);
+  o.maximum_cuboid_aspect = 2.;
+  const PI::Layout_volume_result chain = PI::layout_volume(L, o);
+  CHECK(chain.volume.number_of_patches() == 2);
+  for(const auto& b : chain.quality.certified) CHECK(b.certified_positive);
 }
 
 TEST_CASE("layout volume of a bent and twisted chain stays valid and close to the mesh", "[layout_volume]")

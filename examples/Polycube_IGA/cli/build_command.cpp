@@ -21,6 +21,7 @@
 #include <CGAL/polycube_iga.h>
 
 #include <array>
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 #include <unistd.h>
@@ -85,6 +86,9 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("untangling_min_relative_det_after", V.untangling.min_relative_determinant_after)
       .member("valid", model.is_valid())
       .member("volume_written", written);
+    w.key("grid_attempts").begin_array();
+    for(int g : model.grid_attempts) w.value(g);
+    w.end_array();
     w.key("invalidity_reasons").begin_array();
     for(const auto& r : model.invalidity_reasons()) w.value(r);
     w.end_array();
@@ -142,7 +146,7 @@ int run_build(const Arguments& args)
   Parsed_arguments a(args, {"--merge-duplicates", "--drop-isolated", "--no-self-intersection-test", "--allow-invalid", "--quiet",
                       "--no-untangle"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
-                      "--boundary-layer", "--max-distance", "--max-refinements"});
+                      "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
   if(out.empty()) throw PI::Invalid_input_error("bad_arguments", "build needs -o OUT.xml");
@@ -152,6 +156,7 @@ int run_build(const Arguments& args)
   const double layer = fraction_option(a, "--boundary-layer", 0.25, 0., 0.5);
   const double max_distance = fraction_option(a, "--max-distance", 0.02, 0., 1.);
   const int refinements = positive_option(a, "--max-refinements", 2, 0, 5);
+  const int max_grid = positive_option(a, "--max-grid", std::min(2 * grid, 512), grid, 512);
   const bool verbose = !a.has("--quiet") && isatty(2);
   auto progress = [&](const std::string& stage) {
     if(verbose) std::cerr << "polycube_iga: " << stage << "...\n";
@@ -165,7 +170,7 @@ int run_build(const Arguments& args)
   const auto model = PI::build_trivariate_model(
     in.mesh, PI::parameters::grid_resolution(grid).spline_degree(degree).cut_criterion(criterion).boundary_layer(layer)
       .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
-      .maximum_refinements(refinements),
+      .maximum_refinements(refinements).maximum_grid_resolution(max_grid),
     progress);
 
   const bool write_volume = model.is_valid() || a.has("--allow-invalid");
@@ -204,8 +209,8 @@ Register_command build_command("build", {
   "the whole chain: mesh -> polycube layout -> multipatch B-spline volume (G+Smo XML)",
   "usage: polycube_iga build MESH -o OUT.xml [--vtu OUT.vtu] [--layout-vtu L.vtu] [--layout-json L.json]\n"
   "                          [--report R.json] [--grid N] [--degree P] [--criterion length|minima|symmetry]\n"
-  "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--no-untangle]\n"
-  "                          [--allow-invalid]\n"
+  "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--max-grid M]\n"
+  "                          [--no-untangle] [--allow-invalid]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
   "  --layout-vtu L    the polycube layout on the surface: patches, arcs, nodes\n"
@@ -213,6 +218,8 @@ Register_command build_command("build", {
   "  --report R.json   counts, per-patch scaled and certified Jacobians, Hausdorff distance,\n"
   "                    seconds per stage, warnings (written even when the volume is not)\n"
   "  --grid N          samples per patch side (default 16)   --degree P  spline degree (default 3)\n"
+  "  --max-grid M      if the volume is not valid, rebuild it with 2N, 4N, ... samples up to M\n"
+  "                    (default 2N; M = N never retries); the first valid one is written\n"
   "  --boundary-layer T  depth of the layer of slabs under the surface, as a fraction of the\n"
   "                    shortest arc at each node (default 0.25; 0: one patch per cuboid)\n"
   "  --no-untangle     keep the constructed inner control points; by default those of patches\n"

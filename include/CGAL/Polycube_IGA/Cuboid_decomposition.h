@@ -532,8 +532,11 @@ private:
       pg.border_nodes.push_back(at);
       pg.anchors.push_back({at, square[i]});
     }
-    // The bottom of the cube: an inner square at a quarter of the way in.
-    for(int i = 0; i < 4; ++i) pg.interior_uv.push_back(Eigen::Vector2d(0.5, 0.5) + 0.5 * (square[i] - Eigen::Vector2d(0.5, 0.5)));
+    // The bottom of the cube: an inner square holding a fifth of the area, the share of
+    // each of the cube's five surface patches (a fixed square put a mushroom's whole stem
+    // and head in it, 9% of the diagonal away from the fitted volume).
+    for(int i = 0; i < 4; ++i) pg.interior_uv.push_back(square[i]);
+    pg.interior_area_fraction = 0.2;
     for(std::size_t i = 0; i < 4; ++i) {
       pg.segments.push_back({{i, 4 + i}});
       pg.segments.push_back({{4 + i, 4 + (i + 1) % 4}});

@@ -22,7 +22,9 @@
 //     (Coons + harmonic grid, as for every interior patch).
 //
 // k = round(length / (perimeter / 4)): the mean long-arc length over the mean side of the
-// two end faces, capped by `maximum_pieces`. The result is a Polycube_layout (new nodes
+// two end faces; a tube whose long arcs turn by more than 60 degrees between their ends gets
+// at least ceil(turn / 60 degrees) pieces (a third of a ring around a thick pipe is short but
+// folds, like the torus ring of 3); both capped by `maximum_pieces`. The result is a Polycube_layout (new nodes
 // reuse a vertex of their arc as a placeholder; sub-patches carry no faces) with its
 // Patch_grids, so layout_volume() and pad_layout() use it like any other.
 
@@ -51,8 +53,26 @@ struct Cuboid_chain_options
   /// A tube is split when its length exceeds this many times the side of its cross-section
   /// (into round(length / width) pieces); 0 splits nothing.
   double maximum_aspect = 2.;
+  /// A tube whose axis turns by more than this angle (radians) between its two ends is split
+  /// into pieces turning by at most this much each; 0 splits nothing for its bend.
+  double maximum_bend = 1.0471975511965976; // 60 degrees
   int maximum_pieces = 12;
 };
+
+namespace internal {
+
+/// Angle (radians) between the directions of a polyline's first and last segments: how much
+/// an arc turns between its ends.
+inline double end_tangent_angle(const std::vector<Eigen::Vector3d>& pts)
+{
+  if(pts.size() < 3) return 0.;
+  const Eigen::Vector3d a = pts[1] - pts[0], b = pts.back() - pts[pts.size() - 2];
+  const double na = a.norm(), nb = b.norm();
+  if(!(na > 0.) || !(nb > 0.)) return 0.;
+  return std::acos(std::max(-1., std::min(1., a.dot(b) / (na * nb))));
+}
+
+} // namespace internal
 
 /// A layout whose long tubes are chains, with its grids.
 template <class Point_3>
@@ -105,15 +125,15 @@ Chained_layout<Point_3> split_long_cuboids(const Polycube_layout<Point_3>& layou
 
   // Per cuboid: axis and number of pieces.
   std::vector<int> axis(nc, -1), pieces(nc, 1);
-  for(std::size_t c = 0; c < nc && o.maximum_aspect > 0.; ++c) {
+  for(std::size_t c = 0; c < nc && (o.maximum_aspect > 0. || o.maximum_bend > 0.); ++c) {
     const auto& cu = layout.cuboids[c];
-    double best = 0.;
+    double best = 0., bend = 0.;
     for(int d = 0; d < 3; ++d) {
       bool tube = true;
       for(int s = 1; s <= 6; ++s)
         if((s - 1) / 2 != d) tube = tube && is_surface(cu.patches[std::size_t(s - 1)]);
       if(!tube) continue;
-      double along = 0., across = 0.;
+      double along = 0., across = 0., turn = 0.;
       bool ok = true;
       for(int x = 0; x < 8; ++x) {
         if(x & (1 << d)) continue;
@@ -121,15 +141,19 @@ Chained_layout<Point_3> split_long_cuboids(const Polycube_layout<Point_3>& layou
         // A long arc must belong to the tube's two sides only, or the split would not conform.
         if(a == none || arc_users[a] != 2) { ok = false; break; }
         along += arc_length[a] / 4.;
+        turn += internal::end_tangent_angle(samples.arc_samples[a]) / 4.;
       }
       for(int end = 0; end < 2 && ok; ++end)
         for(std::size_t a : layout.patches[cu.patches[std::size_t(2 * d + end)]].arcs) across += arc_length[a] / 8.;
       if(!ok || !(across > 0.)) continue;
       const double ratio = along / across;
-      if(ratio > best) { best = ratio; axis[c] = d; }
+      if(axis[c] < 0 || ratio > best) { best = ratio; bend = turn; axis[c] = d; }
     }
-    if(axis[c] >= 0 && best > o.maximum_aspect)
+    if(axis[c] >= 0 && o.maximum_aspect > 0. && best > o.maximum_aspect)
       pieces[c] = std::max(2, std::min(o.maximum_pieces, int(std::lround(best))));
+    // A strongly bent tube (a third of a ring around a thick pipe) folds even when short.
+    if(axis[c] >= 0 && o.maximum_bend > 0. && bend > o.maximum_bend)
+      pieces[c] = std::max(pieces[c], std::min(o.maximum_pieces, int(std::ceil(bend / o.maximum_bend - 1e-9))));
   }
 
   Chained_layout<Point_3> r;

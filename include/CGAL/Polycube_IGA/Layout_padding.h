@@ -12,7 +12,10 @@
 // fill the gap with one slab per SURFACE patch:
 //
 //   * every node n gets an inner node n' = n - d_n N_n (N_n the outward unit normal averaged
-//     over the surface patches at n, d_n = thickness x the shortest arc at n);
+//     over the surface patches at n, d_n = thickness x the shortest arc at n, but at most a
+//     third of the solid's thickness under n, so thin parts keep a core between two layers,
+//     and changing by at most 5% of an arc's length along it, so inner arcs stay nearly
+//     parallel to their outer arcs);
 //   * every arc a gets an inner arc a' (the chord of its inner nodes plus half the arc's
 //     deviation from its own chord: straight arcs and flat faces stay so, round ones get
 //     half as round; an arc that bulges into the solid by more than the layer's depth,
@@ -37,7 +40,13 @@
 #include <CGAL/Polycube_IGA/Patch_sampling.h>
 #include <CGAL/Polycube_IGA/Polycube_layout.h>
 
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+
 #include <Eigen/Dense>
+
+#include <cmath>
 
 #include <algorithm>
 #include <limits>
@@ -52,6 +61,11 @@ struct Padding_options
 {
   /// Depth of the layer at a node, as a fraction of the shortest arc at that node.
   double thickness = 0.25;
+  /// At most this fraction of the solid's thickness below the node (the distance to the
+  /// mesh along the inward normal); 0 disables the cap.
+  double maximum_thickness_fraction = 1. / 3.;
+  /// Along an arc, the depth changes by at most this fraction of the arc's length.
+  double maximum_depth_slope = 0.05;
 };
 
 /// A padded layout: the layout of cores and slabs, its grids, and where each cuboid came from.
@@ -78,6 +92,34 @@ inline Eigen::Vector3d grid_normal(const Point_grid& g, int i, int j)
   const Eigen::Vector3d n = du.cross(dv);
   const double l = n.norm();
   return l > 0. ? Eigen::Vector3d(n / l) : Eigen::Vector3d::Zero();
+}
+
+/// Per point, the distance along -normal to the first face of `mesh` (a ray cast from just
+/// below the point, which skips the faces at the point itself); infinity where the ray
+/// leaves without a hit.
+template <class Mesh>
+std::vector<double> inward_thickness(const Mesh& mesh, const std::vector<Eigen::Vector3d>& points,
+                                     const std::vector<Eigen::Vector3d>& normals)
+{
+  using Point = typename boost::property_traits<typename boost::property_map<Mesh, CGAL::vertex_point_t>::const_type>::value_type;
+  using K = typename CGAL::Kernel_traits<Point>::Kernel;
+  using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+  std::vector<double> out(points.size(), std::numeric_limits<double>::infinity());
+  if(faces(mesh).empty()) return out;
+  Tree tree(faces(mesh).first, faces(mesh).second, mesh);
+  const CGAL::Bbox_3 b = tree.bbox();
+  const double offset = 1e-7 * std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) +
+                                         CGAL::square(b.zmax() - b.zmin()));
+  for(std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3d o = points[i] - offset * normals[i];
+    const typename K::Ray_3 ray(Point(o.x(), o.y(), o.z()), typename K::Vector_3(-normals[i].x(), -normals[i].y(), -normals[i].z()));
+    const auto hit = tree.first_intersection(ray);
+    if(!hit) continue;
+    if(const Point* p = boost::get<Point>(&hit->first))
+      out[i] = offset + std::sqrt(CGAL::to_double(CGAL::squared_distance(*p, ray.source())));
+  }
+  return out;
 }
 
 } // namespace internal
@@ -123,9 +165,11 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
   const double infinity = std::numeric_limits<double>::infinity();
   std::vector<double> depth(nn, infinity);
   std::vector<Eigen::Vector3d> outer(nn, Eigen::Vector3d::Zero());
+  std::vector<double> length(na);
   for(std::size_t a = 0; a < na; ++a) {
     const auto& s = samples.arc_samples[a];
-    const double l = o.thickness * internal::cumulative_lengths(s).back();
+    length[a] = internal::cumulative_lengths(s).back();
+    const double l = o.thickness * length[a];
     for(int e = 0; e < 2; ++e) {
       const std::size_t n = layout.arcs[a].nodes[std::size_t(e)];
       depth[n] = std::min(depth[n], l);
@@ -137,8 +181,33 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
     const double l = node_normal[n].norm();
     if(!(l > 0.) || !(depth[n] < infinity))
       throw Invalid_input_error("invalid_layout", "node " + std::to_string(n) + " has no surface normal to pad along");
-    inner[n] = outer[n] - depth[n] * node_normal[n] / l;
+    node_normal[n] /= l;
   }
+  // Where the solid is thinner than the layers on its two faces (a mushroom's rim, a
+  // blade), the inner node would pass the opposite face: the layer keeps to a fraction of
+  // the thickness under the node.
+  if(o.maximum_thickness_fraction > 0.) {
+    const std::vector<double> t = internal::inward_thickness(layout.mesh, outer, node_normal);
+    for(std::size_t n = 0; n < nn; ++n) depth[n] = std::min(depth[n], o.maximum_thickness_fraction * t[n]);
+  }
+  // A node capped by the thickness would tilt the inner arcs and walls around it: the depth
+  // may change along an arc by at most maximum_depth_slope times its length (depths only
+  // decrease, so this ends; each pass lowers at least one node to its final value).
+  if(o.maximum_depth_slope > 0.) {
+    for(bool changed = true; changed;) {
+      changed = false;
+      for(std::size_t a = 0; a < na; ++a) {
+        const std::size_t n0 = layout.arcs[a].nodes[0], n1 = layout.arcs[a].nodes[1];
+        const double slack = o.maximum_depth_slope * length[a];
+        for(const auto& e : {std::make_pair(n0, n1), std::make_pair(n1, n0)})
+          if(depth[e.first] > depth[e.second] + slack) {
+            depth[e.first] = depth[e.second] + slack;
+            changed = true;
+          }
+      }
+    }
+  }
+  for(std::size_t n = 0; n < nn; ++n) inner[n] = outer[n] - depth[n] * node_normal[n];
 
   Padded_layout<Point_3> r;
   Layout& L = r.layout;

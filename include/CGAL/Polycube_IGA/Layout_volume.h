@@ -443,6 +443,24 @@ Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout, const
   return r;
 }
 
+/// The fields of `base` that the named parameters of layout_volume() override, overridden.
+template <class NamedParameters>
+Layout_volume_options layout_volume_options(const NamedParameters& np, Layout_volume_options base = Layout_volume_options())
+{
+  base.sampling.grid_segments = int(option(np, internal_np::grid_resolution, base.sampling.grid_segments));
+  base.sampling.smooth_interior_patches =
+    bool(option(np, internal_np::smooth_interior_patches, base.sampling.smooth_interior_patches));
+  base.degree = int(option(np, internal_np::spline_degree, base.degree));
+  base.spans = int(option(np, internal_np::number_of_spans, base.spans));
+  base.stretching_weight = option(np, internal_np::stretching_weight, base.stretching_weight);
+  base.bending_weight = option(np, internal_np::bending_weight, base.bending_weight);
+  base.data_weight = option(np, internal_np::data_weight, base.data_weight);
+  base.boundary_layer = option(np, internal_np::boundary_layer, base.boundary_layer);
+  base.maximum_cuboid_aspect = option(np, internal_np::maximum_cuboid_aspect, base.maximum_cuboid_aspect);
+  base.untangle = option(np, internal_np::untangle_volume, base.untangle);
+  return base;
+}
+
 /*!
  * Named-parameter form: `grid_resolution` (N, default 16), `smooth_interior_patches`
  * (true), `spline_degree` (3), `number_of_spans` (max(1, N/4)), `stretching_weight` (0),
@@ -456,18 +474,7 @@ Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout,
                                    const NamedParameters& np = parameters::default_values(),
                                    Layout_volume_options base = Layout_volume_options())
 {
-  base.sampling.grid_segments = int(option(np, internal_np::grid_resolution, base.sampling.grid_segments));
-  base.sampling.smooth_interior_patches =
-    bool(option(np, internal_np::smooth_interior_patches, base.sampling.smooth_interior_patches));
-  base.degree = int(option(np, internal_np::spline_degree, base.degree));
-  base.spans = int(option(np, internal_np::number_of_spans, base.spans));
-  base.stretching_weight = option(np, internal_np::stretching_weight, base.stretching_weight);
-  base.bending_weight = option(np, internal_np::bending_weight, base.bending_weight);
-  base.data_weight = option(np, internal_np::data_weight, base.data_weight);
-  base.boundary_layer = option(np, internal_np::boundary_layer, base.boundary_layer);
-  base.maximum_cuboid_aspect = option(np, internal_np::maximum_cuboid_aspect, base.maximum_cuboid_aspect);
-  base.untangle = option(np, internal_np::untangle_volume, base.untangle);
-  return layout_volume(layout, base);
+  return layout_volume(layout, layout_volume_options(np, std::move(base)));
 }
 
 } // namespace Polycube_IGA

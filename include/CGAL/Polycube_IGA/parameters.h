@@ -48,7 +48,8 @@ namespace Polycube_IGA {
   X(boundary_layer_t, boundary_layer)                                               \
   X(maximum_cuboid_aspect_t, maximum_cuboid_aspect)                                 \
   X(untangle_volume_t, untangle_volume)                                             \
-  X(maximum_boundary_distance_t, maximum_boundary_distance)
+  X(maximum_boundary_distance_t, maximum_boundary_distance)                         \
+  X(maximum_grid_resolution_t, maximum_grid_resolution)
 
 namespace internal_np {
 #define CGAL_POLYCUBE_IGA_DECLARE_TAG(TAG, NAME) enum TAG { NAME };

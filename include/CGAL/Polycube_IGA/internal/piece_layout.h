@@ -38,7 +38,62 @@ struct Piece_graph
   std::vector<std::size_t> border_nodes;                        ///< loop indices
   std::vector<Eigen::Vector2d> interior_uv;
   std::vector<std::array<std::size_t, 2>> segments;             ///< graph vertex pairs
+  /// If > 0: the interior vertices, in order a convex polygon around `interior_center`, are
+  /// scaled about it (by s in [0.02, 0.9], their given positions being s = 1) so that the
+  /// polygon holds this fraction of the piece's area. A convex map squeezes the far parts
+  /// of a piece into a small middle: fixed positions put most of a mushroom in one patch.
+  double interior_area_fraction = 0.;
+  Eigen::Vector2d interior_center = Eigen::Vector2d(0.5, 0.5);
 };
+
+/// The scale about g.interior_center at which the convex polygon of g's interior vertices
+/// holds g.interior_area_fraction of the piece's 3D area (triangles counted by their uv
+/// centroid), by bisection; the area inside grows with the scale.
+template <class P>
+double area_balancing_scale(const CGAL::Surface_mesh<P>& piece, const Piece_graph& g)
+{
+  const auto uv = piece.template property_map<typename CGAL::Surface_mesh<P>::Vertex_index, Eigen::Vector2d>("v:uv").first;
+  std::vector<Eigen::Vector2d> centroid;
+  std::vector<double> area;
+  double total = 0.;
+  for(auto f : faces(piece)) {
+    Eigen::Vector2d c = Eigen::Vector2d::Zero();
+    std::array<Eigen::Vector3d, 3> x;
+    int k = 0;
+    for(auto v : vertices_around_face(halfedge(f, piece), piece)) {
+      c += uv[v] / 3.;
+      const auto& p = piece.point(v);
+      x[std::size_t(k++)] = Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+    }
+    centroid.push_back(c);
+    area.push_back(0.5 * (x[1] - x[0]).cross(x[2] - x[0]).norm());
+    total += area.back();
+  }
+  const std::size_t n = g.interior_uv.size();
+  auto inside_area = [&](double s) {
+    double a = 0.;
+    for(std::size_t t = 0; t < centroid.size(); ++t) {
+      bool in = true;
+      for(std::size_t i = 0; i < n && in; ++i) {
+        const Eigen::Vector2d p = g.interior_center + s * (g.interior_uv[i] - g.interior_center);
+        const Eigen::Vector2d q = g.interior_center + s * (g.interior_uv[(i + 1) % n] - g.interior_center);
+        const Eigen::Vector2d e = q - p, d = centroid[t] - p;
+        in = e.x() * d.y() - e.y() * d.x() >= 0.;
+      }
+      if(in) a += area[t];
+    }
+    return a;
+  };
+  double lo = 0.02, hi = 0.9;
+  const double target = g.interior_area_fraction * total;
+  if(inside_area(lo) >= target) return lo;
+  if(inside_area(hi) <= target) return hi;
+  for(int it = 0; it < 40; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (inside_area(mid) < target ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
 
 template <class P>
 struct Piece_graph_embedding
@@ -85,6 +140,10 @@ Piece_graph_embedding<P> embed_piece_graph(CGAL::Surface_mesh<P>& piece,
   const std::size_t nb = g.border_nodes.size(), ni = g.interior_uv.size(), n = nb + ni;
   std::vector<Eigen::Vector2d> uv(n);
   for(std::size_t i = 0; i < nb; ++i) uv[i] = loop_uv[g.border_nodes[i]];
+  if(g.interior_area_fraction > 0.) {
+    const double scale = area_balancing_scale(piece, g);
+    for(auto& p : g.interior_uv) p = g.interior_center + scale * (p - g.interior_center);
+  }
   // Tutte's rule for the interior vertices without a position: each the mean of its
   // graph neighbours (a small dense solve).
   std::vector<int> unknown(n, -1);
