@@ -184,8 +184,16 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     Layout_volume_options finer = volume_options;
     finer.sampling.grid_segments = N;
     Layout_volume_result r;
-    stage("volume construction, grid " + std::to_string(N), [&] { r = layout_volume(model.layout, finer); });
     model.grid_attempts.push_back(N);
+    // The retry is a bonus: if the finer grid cannot be built (a stage rejects its grids),
+    // the first volume stands.
+    try {
+      stage("volume construction, grid " + std::to_string(N), [&] { r = layout_volume(model.layout, finer); });
+    } catch(const Error& e) {
+      model.warnings.push_back("a grid of " + std::to_string(N) + " samples per patch side was tried too and failed: " +
+                               e.reason() + ": " + e.what());
+      break;
+    }
     const std::vector<std::string> reasons = internal::invalidity_reasons(r, model.maximum_boundary_distance);
     if(reasons.empty()) {
       model.warnings.push_back("the volume is built on a grid of " + std::to_string(N) + " samples per patch side: at " +

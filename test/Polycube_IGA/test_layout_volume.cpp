@@ -11,6 +11,7 @@
 #include <CGAL/Polycube_IGA/IO/gismo_xml.h>
 #include <CGAL/Polycube_IGA/Layout_volume.h>
 #include <CGAL/Polycube_IGA/Patch_sampling.h>
+#include <CGAL/Side_of_triangle_mesh.h>
 
 #include <catch2/catch.hpp>
 
@@ -391,6 +392,27 @@ TEST_CASE("the boundary layer stays inside a thin blade", "[layout_volume][bound
   for(std::size_t a = 0; a < na; ++a) {
     const double length = PI::internal::cumulative_lengths(g.arc_samples[a]).back();
     CHECK(std::abs(depth[L.arcs[a].nodes[0]] - depth[L.arcs[a].nodes[1]]) <= po.maximum_depth_slope * length * (1. + 1e-9));
+  }
+}
+
+TEST_CASE("the boundary layer's inner nodes lie inside the solid, reflex corners included", "[layout_volume][boundary_layer]")
+{
+  // joint.off sampled at 32 with its bent tubes split: at a chain node on its flat face
+  // y = -0.5, two of the four patch corners are reflex and their grid normals point in, so
+  // the four cancel; the node takes the normal of the mesh face it lies on instead.
+  const Mesh m = load(data("joint.off"));
+  const Layout L = PI::Cuboid_decomposition<Mesh>()(m);
+  PI::Patch_sampling_options so;
+  so.grid_segments = 32;
+  const PI::Patch_grids g = PI::sample_layout_patches(L, so);
+  const auto C = PI::split_long_cuboids(L, g, so);
+  const PI::Padded_layout<Point> P = PI::pad_layout(C.layout, C.samples);
+  const CGAL::Side_of_triangle_mesh<Mesh, Kernel> inside(L.mesh);
+  const std::size_t nn = C.layout.nodes.size(), na = C.layout.arcs.size();
+  for(std::size_t n = 0; n < nn; ++n) {
+    const Eigen::Vector3d q = P.samples.arc_samples[2 * na + n].back();
+    INFO("node " << n);
+    CHECK(inside(Point(q.x(), q.y(), q.z())) == CGAL::ON_BOUNDED_SIDE);
   }
 }
 

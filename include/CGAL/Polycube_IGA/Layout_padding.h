@@ -49,6 +49,7 @@
 #include <cmath>
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <string>
 #include <vector>
@@ -94,31 +95,66 @@ inline Eigen::Vector3d grid_normal(const Point_grid& g, int i, int j)
   return l > 0. ? Eigen::Vector3d(n / l) : Eigen::Vector3d::Zero();
 }
 
-/// Per point, the distance along -normal to the first face of `mesh` (a ray cast from just
-/// below the point, which skips the faces at the point itself); infinity where the ray
-/// leaves without a hit.
+/// Ray casts and closest faces on the surface mesh, for the inner nodes (one AABB tree).
+template <class Mesh>
+class Mesh_probe
+{
+  using Point = typename boost::property_traits<typename boost::property_map<Mesh, CGAL::vertex_point_t>::const_type>::value_type;
+  using K = typename CGAL::Kernel_traits<Point>::Kernel;
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>>;
+
+public:
+  explicit Mesh_probe(const Mesh& mesh) : mesh_(mesh), tree_(faces(mesh).first, faces(mesh).second, mesh)
+  {
+    if(faces(mesh).empty()) return;
+    const CGAL::Bbox_3 b = tree_.bbox();
+    offset_ = 1e-7 * std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) + CGAL::square(b.zmax() - b.zmin()));
+    tree_.accelerate_distance_queries();
+  }
+
+  /// The distance along -normal from `p` to the first face (a ray cast from just below `p`,
+  /// which skips the faces at `p` itself); infinity where the ray leaves without a hit.
+  double thickness(const Eigen::Vector3d& p, const Eigen::Vector3d& normal) const
+  {
+    if(faces(mesh_).empty()) return std::numeric_limits<double>::infinity();
+    const Eigen::Vector3d o = p - offset_ * normal;
+    const typename K::Ray_3 ray(Point(o.x(), o.y(), o.z()), typename K::Vector_3(-normal.x(), -normal.y(), -normal.z()));
+    const auto hit = tree_.first_intersection(ray);
+    if(hit)
+      if(const Point* q = boost::get<Point>(&hit->first)) return offset_ + std::sqrt(CGAL::to_double(CGAL::squared_distance(*q, ray.source())));
+    return std::numeric_limits<double>::infinity();
+  }
+
+  /// The unit normal (the mesh's orientation) of the face closest to `p`.
+  Eigen::Vector3d closest_face_normal(const Eigen::Vector3d& p) const
+  {
+    if(faces(mesh_).empty()) return Eigen::Vector3d::Zero();
+    const auto f = tree_.closest_point_and_primitive(Point(p.x(), p.y(), p.z())).second;
+    std::array<Eigen::Vector3d, 3> x;
+    int k = 0;
+    for(auto v : vertices_around_face(halfedge(f, mesh_), mesh_)) {
+      const Point& q = get(CGAL::vertex_point, mesh_, v);
+      if(k < 3) x[std::size_t(k)] = Eigen::Vector3d(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z()));
+      ++k;
+    }
+    const Eigen::Vector3d n = (x[1] - x[0]).cross(x[2] - x[0]);
+    return n.norm() > 0. ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Zero();
+  }
+
+private:
+  const Mesh& mesh_;
+  Tree tree_;
+  double offset_ = 0.;
+};
+
+/// Per point, Mesh_probe::thickness() along its normal.
 template <class Mesh>
 std::vector<double> inward_thickness(const Mesh& mesh, const std::vector<Eigen::Vector3d>& points,
                                      const std::vector<Eigen::Vector3d>& normals)
 {
-  using Point = typename boost::property_traits<typename boost::property_map<Mesh, CGAL::vertex_point_t>::const_type>::value_type;
-  using K = typename CGAL::Kernel_traits<Point>::Kernel;
-  using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
-  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
-  std::vector<double> out(points.size(), std::numeric_limits<double>::infinity());
-  if(faces(mesh).empty()) return out;
-  Tree tree(faces(mesh).first, faces(mesh).second, mesh);
-  const CGAL::Bbox_3 b = tree.bbox();
-  const double offset = 1e-7 * std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) +
-                                         CGAL::square(b.zmax() - b.zmin()));
-  for(std::size_t i = 0; i < points.size(); ++i) {
-    const Eigen::Vector3d o = points[i] - offset * normals[i];
-    const typename K::Ray_3 ray(Point(o.x(), o.y(), o.z()), typename K::Vector_3(-normals[i].x(), -normals[i].y(), -normals[i].z()));
-    const auto hit = tree.first_intersection(ray);
-    if(!hit) continue;
-    if(const Point* p = boost::get<Point>(&hit->first))
-      out[i] = offset + std::sqrt(CGAL::to_double(CGAL::squared_distance(*p, ray.source())));
-  }
+  const Mesh_probe<Mesh> probe(mesh);
+  std::vector<double> out(points.size());
+  for(std::size_t i = 0; i < points.size(); ++i) out[i] = probe.thickness(points[i], normals[i]);
   return out;
 }
 
@@ -149,6 +185,7 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
   // solid, Patch_sampling.h): sums of the unit normals at the corners of the surface
   // patches around each node.
   std::vector<Eigen::Vector3d> node_normal(nn, Eigen::Vector3d::Zero());
+  std::vector<int> surface_corners(nn, 0);
   std::vector<int> surface_sides(na, 0);
   for(std::size_t p = 0; p < np; ++p) {
     const auto& pa = layout.patches[p];
@@ -157,6 +194,7 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
       ++surface_sides[pa.arcs[std::size_t(i)]];
       const std::array<int, 2> c = internal::border_index(i, 0, N);
       node_normal[pa.corners[std::size_t(i)]] += internal::grid_normal(samples.grids[p], c[0], c[1]);
+      ++surface_corners[pa.corners[std::size_t(i)]];
     }
   }
 
@@ -176,6 +214,13 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
       outer[n] = e == 0 ? s.front() : s.back();
     }
   }
+  // A patch corner whose angle is reflex turns its grid's corner normal over; where that
+  // cancels the others (a chain node of joint.off, two of four normals reversed) the node
+  // takes the normal of the mesh face it lies on.
+  const internal::Mesh_probe<typename Layout::Mesh> probe(layout.mesh);
+  for(std::size_t n = 0; n < nn; ++n)
+    if(surface_corners[n] > 0 && node_normal[n].norm() < 0.25 * surface_corners[n] && depth[n] < infinity)
+      node_normal[n] = probe.closest_face_normal(outer[n]);
   std::vector<Eigen::Vector3d> inner(nn);
   for(std::size_t n = 0; n < nn; ++n) {
     const double l = node_normal[n].norm();
@@ -187,8 +232,7 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
   // blade), the inner node would pass the opposite face: the layer keeps to a fraction of
   // the thickness under the node.
   if(o.maximum_thickness_fraction > 0.) {
-    const std::vector<double> t = internal::inward_thickness(layout.mesh, outer, node_normal);
-    for(std::size_t n = 0; n < nn; ++n) depth[n] = std::min(depth[n], o.maximum_thickness_fraction * t[n]);
+    for(std::size_t n = 0; n < nn; ++n) depth[n] = std::min(depth[n], o.maximum_thickness_fraction * probe.thickness(outer[n], node_normal[n]));
   }
   // A node capped by the thickness would tilt the inner arcs and walls around it: the depth
   // may change along an arc by at most maximum_depth_slope times its length (depths only
