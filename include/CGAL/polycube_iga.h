@@ -213,7 +213,8 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   const Volume_untangling_result& u = model.volume.untangling;
   if(u.skipped)
     model.warnings.push_back("untangling skipped: " + std::to_string(u.patches.size()) +
-                             " patches would be optimised, more than Volume_untangling_options::maximum_patches");
+                             " patches would be optimised, more than Volume_untangling_options::maximum_patches or "
+                             "maximum_control_points allow");
   else if(u.reverted)
     model.warnings.push_back("untangling discarded: it did not raise the smallest det J or cost a patch its certificate");
   else if(!u.patches.empty() && !u.positive_at_samples)

@@ -174,6 +174,22 @@ TEST_CASE("build gives a certified valid volume for a torus", "[build]")
   }
 }
 
+TEST_CASE("build gives a certified valid volume for a thick pipe", "[build][untangling]")
+{
+  // pipe.off, a torus-class thick pipe: its ring's sectors turn by 120 degrees and are split
+  // in 2 (Layout_chains.h); 30 patches, then untangled (within the 32-patch cost guard).
+  const Mesh m = load(data("pipe.off"));
+  const auto model = PI::build_trivariate_model(m);
+  CHECK(model.layout.layout_class == PI::Layout_class::torus);
+  CHECK(model.volume.volume.number_of_patches() == 30);
+  REQUIRE(model.is_valid());
+  CHECK(model.grid_attempts == std::vector<int>{16});
+  for(const auto& b : model.volume.quality.certified) CHECK(b.lower_bound > 0.);
+  CHECK(model.volume.distance.relative < 0.02);
+  CHECK(model.volume.distance.folded_sides.empty());
+  CHECK(model.volume.quality.interfaces.max_gap < 1e-9);
+}
+
 TEST_CASE("untangling makes the sphere's volume certified valid", "[build][untangling]")
 {
   // The sphere's one cube with its boundary layer folds near the belt nodes; moving the

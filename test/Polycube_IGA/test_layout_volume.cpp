@@ -351,11 +351,8 @@ TEST_CASE("the boundary layer stays inside a thin blade", "[layout_volume][bound
 {
   // blade.off is a few percent thick: a quarter of its arcs would push every inner node
   // through the opposite face (most of its nodes), building slabs outside the solid.
-  const Mesh m = load(data("blade.off"));
-  const Layout L = PI::Cuboid_decomposition<Mesh>()(m);
-  PI::Patch_sampling_options so;
-  so.grid_segments = 8;
-  const PI::Patch_grids g = PI::sample_layout_patches(L, so);
+  const Layout L = PI::Cuboid_decomposition<Mesh>()(load(data("blade.off")));
+  const PI::Patch_grids g = PI::sample_layout_patches(L, small_options(8).sampling);
   const std::size_t nn = L.nodes.size(), na = L.arcs.size();
   using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, CGAL::AABB_face_graph_triangle_primitive<Mesh>>>;
   const Tree tree(faces(L.mesh).first, faces(L.mesh).second, L.mesh);
@@ -400,12 +397,9 @@ TEST_CASE("the boundary layer's inner nodes lie inside the solid, reflex corners
   // joint.off sampled at 32 with its bent tubes split: at a chain node on its flat face
   // y = -0.5, two of the four patch corners are reflex and their grid normals point in, so
   // the four cancel; the node takes the normal of the mesh face it lies on instead.
-  const Mesh m = load(data("joint.off"));
-  const Layout L = PI::Cuboid_decomposition<Mesh>()(m);
-  PI::Patch_sampling_options so;
-  so.grid_segments = 32;
-  const PI::Patch_grids g = PI::sample_layout_patches(L, so);
-  const auto C = PI::split_long_cuboids(L, g, so);
+  const Layout L = PI::Cuboid_decomposition<Mesh>()(load(data("joint.off")));
+  const PI::Patch_sampling_options so = small_options(32).sampling;
+  const auto C = PI::split_long_cuboids(L, PI::sample_layout_patches(L, so), so);
   const PI::Padded_layout<Point> P = PI::pad_layout(C.layout, C.samples);
   const CGAL::Side_of_triangle_mesh<Mesh, Kernel> inside(L.mesh);
   const std::size_t nn = C.layout.nodes.size(), na = C.layout.arcs.size();

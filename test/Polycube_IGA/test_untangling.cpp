@@ -170,7 +170,7 @@ TEST_CASE("untangling cannot move a fixed boundary and says so", "[untangling]")
   for(int s = 1; s <= 6; ++s) CHECK(boundary_points_equal(mv.patch(0), v, s));
 }
 
-TEST_CASE("untangling skips models with more patches to optimise than allowed", "[untangling]")
+TEST_CASE("untangling skips models with more patches or control points to optimise than allowed", "[untangling]")
 {
   PI::Multipatch_volume mv;
   PI::Tensor_bspline_volume v = box(0.);
@@ -179,13 +179,21 @@ TEST_CASE("untangling skips models with more patches to optimise than allowed", 
   mv.add_patch(v);
   add_all_boundaries(mv, 0);
   add_all_boundaries(mv, 1);
-  PI::Volume_untangling_options o;
-  o.maximum_patches = 1;
-  const PI::Volume_untangling_result r = PI::untangle_volume(mv, o);
-  CHECK(r.skipped);
-  CHECK(r.patches == std::vector<std::size_t>{0, 1});
-  CHECK_FALSE(r.positive_at_samples);
-  for(std::size_t p = 0; p < 2; ++p) CHECK(mv.patch(p).control_points() == v.control_points());
+  PI::Volume_untangling_options by_patches, by_points;
+  by_patches.maximum_patches = 1;
+  by_points.maximum_control_points = 2 * v.number_of_control_points() - 1; // one point short
+  for(const auto& o : {by_patches, by_points}) {
+    PI::Multipatch_volume m = mv;
+    const PI::Volume_untangling_result r = PI::untangle_volume(m, o);
+    CHECK(r.skipped);
+    CHECK(r.patches == std::vector<std::size_t>{0, 1});
+    CHECK_FALSE(r.positive_at_samples);
+    for(std::size_t p = 0; p < 2; ++p) CHECK(m.patch(p).control_points() == v.control_points());
+  }
+  // With room for both patches' points, it runs.
+  PI::Volume_untangling_options enough;
+  enough.maximum_control_points = 2 * v.number_of_control_points();
+  CHECK_FALSE(PI::untangle_volume(mv, enough).skipped);
 }
 
 TEST_CASE("the regularised determinant stays positive and accurate for inverted samples", "[untangling]")

@@ -44,10 +44,12 @@ struct Volume_untangling_options
   /// Patches with a sampled scaled Jacobian below this (at Gauss points and span corners)
   /// are optimised, together with their interface neighbours.
   double scaled_jacobian_threshold = 0.05;
-  /// Cost guard: with more patches to optimise than this, nothing is done (`skipped`).
-  /// Cost grows with the patches optimised: about 3 s for the 7 patches of the sphere at
-  /// the default grid (some 760 L-BFGS iterations).
-  std::size_t maximum_patches = 12;
+  /// Cost guards: with more patches to optimise than this, or more control points in them
+  /// than maximum_control_points, nothing is done (`skipped`). Cost grows with the control
+  /// points: about 1 s for the 7 patches of the sphere at the default grid (4 spans, 343
+  /// points each), 9 s for the 30 of pipe.off, 2 minutes for head.off's 29 at 8 spans.
+  std::size_t maximum_patches = 32;
+  std::size_t maximum_control_points = 32 * 343;
   int maximum_rounds = 12;          ///< epsilon updates
   int iterations_per_round = 100;   ///< L-BFGS iterations per round
 };
@@ -61,7 +63,7 @@ struct Volume_untangling_result
   /// Smallest det(J W^-1) over the samples of those patches, before and after.
   double min_relative_determinant_before = 0., min_relative_determinant_after = 0.;
   bool positive_at_samples = false; ///< every sample has det J > 0 afterwards
-  bool skipped = false; ///< more patches needed it than Volume_untangling_options::maximum_patches
+  bool skipped = false; ///< more patches or control points needed it than the options' cost guards allow
   /// The optimised points were discarded: the smallest sampled det J did not improve, or a
   /// patch whose det J was certified positive lost its certificate.
   bool reverted = false;
@@ -281,7 +283,8 @@ void for_each_side_point(const Tensor_bspline_volume& v, int s, F&& f)
  * sides, points of other patches and rational patches stay fixed; a point shared by an
  * interface moves on both sides at once, so interfaces stay conforming. Returns what was
  * done; `mv` is left unchanged if no patch is below the threshold, if more than
- * `o.maximum_patches` would be optimised (`skipped`), or (`reverted`) if the smallest
+ * `o.maximum_patches` patches or `o.maximum_control_points` control points would be
+ * optimised (`skipped`), or (`reverted`) if the smallest
  * sampled det J does not improve or a patch certified valid before is not afterwards.
  * Deterministic.
  */
@@ -311,7 +314,10 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
     if(seed[I.first.patch] || seed[I.second.patch]) active[I.first.patch] = active[I.second.patch] = true;
   for(std::size_t c = 0; c < np; ++c)
     if(mv.patch(c).is_rational()) active[c] = false;
-  if(std::size_t(std::count(active.begin(), active.end(), true)) > o.maximum_patches) {
+  std::size_t active_points = 0;
+  for(std::size_t c = 0; c < np; ++c)
+    if(active[c]) active_points += mv.patch(c).number_of_control_points();
+  if(std::size_t(std::count(active.begin(), active.end(), true)) > o.maximum_patches || active_points > o.maximum_control_points) {
     for(std::size_t c = 0; c < np; ++c)
       if(active[c]) r.patches.push_back(c);
     r.skipped = true;
