@@ -630,14 +630,25 @@ TEST_CASE("G+Smo XML round trip is bit for bit, VTU and JSON are written", "[spl
   CHECK_THROWS_AS(PI::IO::read_gismo_xml(std::string("/nonexistent/file.xml")), PI::Invalid_input_error);
 }
 
+namespace {
+using Cube_mesh = CGAL::Surface_mesh<CGAL::Exact_predicates_inexact_constructions_kernel::Point_3>;
+
+/// The unit cube [0,1]^3 as 12 outward-oriented triangles: the reference mesh of the
+/// boundary distance tests.
+Cube_mesh triangulated_unit_cube()
+{
+  using P = Cube_mesh::Point;
+  Cube_mesh cube;
+  CGAL::make_hexahedron(P(0, 0, 0), P(1, 0, 0), P(1, 1, 0), P(0, 1, 0), P(0, 1, 1), P(0, 0, 1), P(1, 0, 1), P(1, 1, 1), cube);
+  CGAL::Polygon_mesh_processing::triangulate_faces(cube);
+  return cube;
+}
+} // namespace
+
 TEST_CASE("two-sided Hausdorff distance to a triangle mesh", "[spline]")
 {
-  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-  using Mesh = CGAL::Surface_mesh<K::Point_3>;
-  Mesh cube;
-  CGAL::make_hexahedron(K::Point_3(0, 0, 0), K::Point_3(1, 0, 0), K::Point_3(1, 1, 0), K::Point_3(0, 1, 0),
-                        K::Point_3(0, 1, 1), K::Point_3(0, 0, 1), K::Point_3(1, 0, 1), K::Point_3(1, 1, 1), cube);
-  CGAL::Polygon_mesh_processing::triangulate_faces(cube);
+  using Mesh = Cube_mesh;
+  const Mesh cube = triangulated_unit_cube();
   PI::Multipatch_volume mp;
   mp.add_patch(unit_cube(3));
   const auto d = PI::boundary_hausdorff_distance(mp, cube, 16);
@@ -670,12 +681,8 @@ TEST_CASE("two-sided Hausdorff distance to a triangle mesh", "[spline]")
 
 TEST_CASE("boundary sides whose fitted face turns over are named", "[spline]")
 {
-  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-  using Mesh = CGAL::Surface_mesh<K::Point_3>;
-  Mesh cube;
-  CGAL::make_hexahedron(K::Point_3(0, 0, 0), K::Point_3(1, 0, 0), K::Point_3(1, 1, 0), K::Point_3(0, 1, 0),
-                        K::Point_3(0, 1, 1), K::Point_3(0, 0, 1), K::Point_3(1, 0, 1), K::Point_3(1, 1, 1), cube);
-  CGAL::Polygon_mesh_processing::triangulate_faces(cube);
+  using Mesh = Cube_mesh;
+  const Mesh cube = triangulated_unit_cube();
   PI::Multipatch_volume plain;
   plain.add_patch(unit_cube(3));
   CHECK(PI::boundary_hausdorff_distance(plain, cube, 16).folded_sides.empty());
