@@ -10,6 +10,8 @@
 
 #include <CGAL/Polycube_IGA/Cuboid_decomposition.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/centroid.h>
 
 #include <catch2/catch.hpp>
 
@@ -147,4 +149,33 @@ TEST_CASE("cuboid decomposition is deterministic", "[cuboid]")
   for(auto v : vertices(a.mesh)) same = same && a.mesh.point(v) == b.mesh.point(v);
   for(std::size_t i = 0; same && i < a.arcs.size(); ++i) same = a.arcs[i].vertices == b.arcs[i].vertices;
   CHECK(same);
+}
+
+TEST_CASE("cuboid decomposition orients its surface patches outwards whatever the input's orientation", "[cuboid]")
+{
+  // head.off comes with its faces pointing into the solid. The layout's surface patches must
+  // still run counter-clockwise seen from outside (the boundary layer grows along the inward
+  // normal they define), so the layout's mesh is turned outwards whichever way the input
+  // points; on the (convex) sphere, every patch's corner normal then points away from the
+  // centre. test_layout_volume checks that the head's boundary layer grows inside.
+  for(const char* name : {"head.off", "sphere.off"}) {
+    INFO(name);
+    const Mesh m = load(data(name));
+    Mesh flipped = m;
+    CGAL::Polygon_mesh_processing::reverse_face_orientations(flipped);
+    for(const Mesh* input : std::array<const Mesh*, 2>{{&m, &flipped}}) {
+      const Layout L = decompose(*input);
+      check_layout(m, L);
+      CHECK(PI::internal::Mesh_graph<Mesh>(L.mesh, get(CGAL::vertex_point, L.mesh)).capped_signed_volume() > 0.);
+      if(std::string(name) != "sphere.off") continue;
+      using Vector = Kernel::Vector_3;
+      const Vector centre = CGAL::centroid(m.points().begin(), m.points().end()) - CGAL::ORIGIN;
+      for(const auto& pa : L.patches) {
+        if(pa.kind != Layout::SURFACE) continue;
+        const Point& c0 = L.mesh.point(L.nodes[pa.corners[0]]);
+        const Vector n = CGAL::cross_product(L.mesh.point(L.nodes[pa.corners[1]]) - c0, L.mesh.point(L.nodes[pa.corners[3]]) - c0);
+        CHECK(n * (c0 - CGAL::ORIGIN - centre) > 0.);
+      }
+    }
+  }
 }

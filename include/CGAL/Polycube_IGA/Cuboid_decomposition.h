@@ -41,6 +41,7 @@
 #include <CGAL/Polycube_IGA/internal/piece_layout.h>
 #include <CGAL/Polycube_IGA/internal/shortest_path_tree.h>
 
+#include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
@@ -222,6 +223,13 @@ Polycube_layout<P> finish_layout(Piece_mesh<P>&& mesh, Layout_builder& b, Layout
   L.boundary_loops = boundary_loops;
   L.number_of_pants = pants;
   L.mesh = std::move(mesh);
+  // Surface patches are counter-clockwise seen from outside, which later stages read as
+  // "grid u x v points out of the solid" (the boundary layer's inward normal, the cuboids'
+  // handedness). An input whose faces point inwards (head.off) would put the boundary layer
+  // outside the solid, so such a surface is turned over before its patches are walked; the
+  // capped volume decides, as for the handle/tunnel test. Vertices and faces keep their indices.
+  if(Mesh_graph<Piece_mesh<P>>(L.mesh, get(CGAL::vertex_point, L.mesh)).capped_signed_volume() < 0.)
+    CGAL::Polygon_mesh_processing::reverse_face_orientations(L.mesh);
   for(std::size_t v : b.node_vertex) L.nodes.push_back(V(std::uint32_t(v)));
   for(std::size_t a = 0; a < b.arc_path.size(); ++a) {
     typename Polycube_layout<P>::Arc arc;

@@ -13,8 +13,8 @@
 // Per cuboid, side s gets the grid of its patch re-indexed by the symmetry of the square
 // that sends the patch's corners onto Polycube_layout::side_nodes(cuboid, s), so every side
 // grid runs along the cuboid's local directions. Layouts may come with left-handed cuboid
-// frames; such a cuboid (negative volume enclosed by its six side grids, oriented by the
-// local frame) is fitted with its u direction reversed, so every patch has det J > 0 where
+// frames; such a cuboid (by the mesh's orientation, frame_handedness(), or else by the sign
+// of the volume its six side grids enclose) is fitted with its u direction reversed, so every patch has det J > 0 where
 // the fit is valid. Interfaces are declared from the layout (compute_topology() finds the
 // same ones geometrically), boundaries are the remaining sides.
 
@@ -194,6 +194,59 @@ inline double enclosed_volume(const std::array<Point_grid, 6>& grids)
   return vol;
 }
 
+/// +1 or -1: whether the frame-outward normal of side s of a cuboid, +-(X_a x X_b) as in
+/// enclosed_volume(), has the sense of its patch grid's u x v when the side is indexed
+/// through symmetry `sym` (each of its three bits is a reflection of the square).
+inline int side_sense(int s, int sym)
+{
+  const int frame = (side_parameter(s) ? 1 : -1) * (side_direction(s) == 1 ? -1 : 1);
+  const int bits = (sym & 1) + ((sym >> 1) & 1) + ((sym >> 2) & 1);
+  return bits % 2 == 0 ? frame : -frame;
+}
+
+/// Per cuboid: +1 if its local frame is right-handed, -1 if left-handed, 0 if undecided.
+/// Decided from the mesh's orientation, not from the geometry: a SURFACE patch's grid has
+/// u x v pointing out of the solid (Patch_sampling.h), which fixes the handedness of every
+/// cuboid with a SURFACE side; across an INTERFACE the two frame-outward normals must be
+/// opposite, which carries it to cuboids inside (cores). The signed volume enclosed by the
+/// side grids gives the same answer on a sound cuboid but turns over with the cuboid: a
+/// slab whose inner side crosses its outer one was mirrored and so faced its surface
+/// against the mesh, which no untangling of its interior can repair. Cuboids no SURFACE
+/// side reaches (a layout without surface patches) stay 0; the first decision wins.
+template <class Layout>
+std::vector<int> frame_handedness(const Layout& L)
+{
+  std::vector<int> h(L.cuboids.size(), 0);
+  std::vector<std::vector<std::array<std::size_t, 2>>> sides_of(L.patches.size()); // (cuboid, side)
+  std::vector<std::size_t> queue;
+  for(std::size_t c = 0; c < L.cuboids.size(); ++c)
+    for(int s = 1; s <= 6; ++s) {
+      const std::size_t p = L.cuboids[c].patches[std::size_t(s - 1)];
+      if(p >= L.patches.size()) continue;
+      sides_of[p].push_back({{c, std::size_t(s)}});
+      if(h[c] == 0 && L.patches[p].kind == Layout::SURFACE) {
+        h[c] = side_sense(s, side_symmetry(L, L.cuboids[c], s));
+        queue.push_back(c);
+      }
+    }
+  for(std::size_t q = 0; q < queue.size(); ++q) {
+    const std::size_t a = queue[q];
+    for(int sa = 1; sa <= 6; ++sa) {
+      const std::size_t p = L.cuboids[a].patches[std::size_t(sa - 1)];
+      if(p >= L.patches.size() || L.patches[p].kind != Layout::INTERFACE) continue;
+      const int na = h[a] * side_sense(sa, side_symmetry(L, L.cuboids[a], sa)); // true outward, in grid u x v
+      for(const auto& bs : sides_of[p]) {
+        const std::size_t b = bs[0];
+        if(b == a || h[b] != 0) continue;
+        const int sb = int(bs[1]);
+        h[b] = -na * side_sense(sb, side_symmetry(L, L.cuboids[b], sb));
+        queue.push_back(b);
+      }
+    }
+  }
+  return h;
+}
+
 /// The same cuboid with local u reversed: nodes (i,j,k) -> (1-i,j,k), sides 1 and 2 swapped.
 template <class Cuboid>
 Cuboid mirror_u(const Cuboid& cu)
@@ -313,13 +366,14 @@ Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout, Patch
     }
   }
 
+  const std::vector<int> handedness = internal::frame_handedness(layout);
   std::vector<typename Layout::Cuboid> frame(layout.cuboids.size());
   for(std::size_t c = 0; c < layout.cuboids.size(); ++c) {
     typename Layout::Cuboid cu = layout.cuboids[c];
     std::array<Point_grid, 6> grids;
     for(int s = 1; s <= 6; ++s) grids[std::size_t(s - 1)] = internal::cuboid_side_grid(layout, samples, cu, s);
     const double vol = internal::enclosed_volume(grids);
-    const bool mirror = vol < 0.;
+    const bool mirror = handedness[c] != 0 ? handedness[c] < 0 : vol < 0.;
     if(mirror) {
       cu = internal::mirror_u(cu);
       for(int s = 1; s <= 6; ++s) grids[std::size_t(s - 1)] = internal::cuboid_side_grid(layout, samples, cu, s);
