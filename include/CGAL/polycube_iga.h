@@ -152,6 +152,8 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
                                          .criterion_strength(option(np, internal_np::criterion_strength, 1.0))
                                          .maximum_refinements(option(np, internal_np::maximum_refinements, 2)));
   });
+  if(model.layout.turned_outwards)
+    model.warnings.push_back("the input's faces point into the solid; the layout and the volume use them turned outwards");
   stage("layout validation", [&] { model.layout_validation = model.layout.validate(); });
   if(!model.layout_validation.is_valid())
     throw Internal_error("invalid_layout", "the polycube layout violates an invariant: " + model.layout_validation.problems.front());

@@ -40,6 +40,11 @@ TEST_CASE("build turns every surface class into a multipatch volume", "[build]")
     const auto model = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).number_of_spans(2).maximum_grid_resolution(8));
     REQUIRE(model.layout_validation.is_valid());
     CHECK(model.grid_attempts == std::vector<int>{8});
+    // head.off's faces point into the solid: the build says it turned them outwards.
+    const bool said = std::any_of(model.warnings.begin(), model.warnings.end(),
+                                  [](const std::string& w) { return w.find("point into the solid") != std::string::npos; });
+    CHECK(model.layout.turned_outwards == (std::string(name) == "head.off"));
+    CHECK(said == model.layout.turned_outwards);
     const auto& V = model.volume;
     // Cores (pieces of cuboids, long tubes being chains) and one slab per piece of surface
     // patch (the default boundary layer): every cuboid and surface patch is covered.

@@ -167,6 +167,7 @@ TEST_CASE("cuboid decomposition orients its surface patches outwards whatever th
       const Layout L = decompose(*input);
       check_layout(m, L);
       CHECK(PI::internal::Mesh_graph<Mesh>(L.mesh, get(CGAL::vertex_point, L.mesh)).capped_signed_volume() > 0.);
+      CHECK(L.turned_outwards == ((std::string(name) == "head.off") != (input == &flipped)));
       if(std::string(name) != "sphere.off") continue;
       using Vector = Kernel::Vector_3;
       const Vector centre = CGAL::centroid(m.points().begin(), m.points().end()) - CGAL::ORIGIN;

@@ -228,8 +228,8 @@ Polycube_layout<P> finish_layout(Piece_mesh<P>&& mesh, Layout_builder& b, Layout
   // handedness). An input whose faces point inwards (head.off) would put the boundary layer
   // outside the solid, so such a surface is turned over before its patches are walked; the
   // capped volume decides, as for the handle/tunnel test. Vertices and faces keep their indices.
-  if(Mesh_graph<Piece_mesh<P>>(L.mesh, get(CGAL::vertex_point, L.mesh)).capped_signed_volume() < 0.)
-    CGAL::Polygon_mesh_processing::reverse_face_orientations(L.mesh);
+  L.turned_outwards = Mesh_graph<Piece_mesh<P>>(L.mesh, get(CGAL::vertex_point, L.mesh)).capped_signed_volume() < 0.;
+  if(L.turned_outwards) CGAL::Polygon_mesh_processing::reverse_face_orientations(L.mesh);
   for(std::size_t v : b.node_vertex) L.nodes.push_back(V(std::uint32_t(v)));
   for(std::size_t a = 0; a < b.arc_path.size(); ++a) {
     typename Polycube_layout<P>::Arc arc;

@@ -111,6 +111,9 @@ struct Polycube_layout
   int genus = 0;
   std::size_t boundary_loops = 0;
   std::size_t number_of_pants = 0;
+  /// The input's faces pointed into the solid, so `mesh` is the input turned over (surface
+  /// patches are counter-clockwise seen from outside whichever way the input points).
+  bool turned_outwards = false;
   /// The surface the layout lives on; carries "v:input_index"/"f:input_index" when built
   /// from an input file (refinement vertices get -1 as input index).
   Mesh mesh;

@@ -212,7 +212,8 @@ inline void write_indented_json(std::ostream& os, const std::string& s)
 
 /// \ingroup PkgPolycubeIGARef
 /// Writes the layout as one JSON object (keys in this order): `class` (layout_class_name),
-/// `genus`, `boundary_loops`, `pants`; `nodes` [{`vertex`, `input_vertex` (from the mesh's
+/// `genus`, `boundary_loops`, `pants`, `turned_outwards` (the input's faces pointed inwards);
+/// `nodes` [{`vertex`, `input_vertex` (from the mesh's
 /// "v:input_index" property, -1 without it or for a refinement vertex), `point` [x,y,z]}];
 /// `arcs` [{`nodes` [a,b], `vertices` [...], `length`}]; `patches` [{`kind` ("surface",
 /// "cap" or "interface"), `corners` [4], `arcs` [4], `faces` (count), `area` (of the faces,
@@ -237,7 +238,8 @@ void write_layout_json(std::ostream& os, const Polycube_layout<P>& L, bool prett
     .member("class", layout_class_name(L.layout_class))
     .member("genus", L.genus)
     .member("boundary_loops", Ull(L.boundary_loops))
-    .member("pants", Ull(L.number_of_pants));
+    .member("pants", Ull(L.number_of_pants))
+    .member("turned_outwards", L.turned_outwards);
 
   w.key("nodes").begin_array();
   for(auto v : L.nodes) {
