@@ -18,6 +18,7 @@
 #include <CGAL/Polycube_IGA/parameters.h>
 
 #include <algorithm>
+#include <limits>
 #include <array>
 #include <chrono>
 #include <functional>
@@ -71,6 +72,14 @@ std::string boundary_distance_message(const Polycube_layout<Point_3>& layout, co
   return s;
 }
 
+/// Patches of `v` whose det J is not certified positive (all of them if not evaluated).
+inline std::size_t uncertified_patches(const Layout_volume_result& v)
+{
+  if(!v.quality_evaluated) return std::numeric_limits<std::size_t>::max();
+  return std::size_t(std::count_if(v.quality.certified.begin(), v.quality.certified.end(),
+                                   [](const auto& b) { return !b.certified_positive; }));
+}
+
 /// Reason codes of Trivariate_model::invalidity_reasons() for volume `v`.
 inline std::vector<std::string> invalidity_reasons(const Layout_volume_result& v, double maximum_boundary_distance)
 {
@@ -112,6 +121,9 @@ struct Trivariate_model
   /// The grid resolutions the volume was built with, in order; the last valid one, or else
   /// the first, is `volume` (see `maximum_grid_resolution` in build_trivariate_model()).
   std::vector<int> grid_attempts;
+  /// True when the volume at the first grid was invalid and was built again on relaxed
+  /// surface grids (`grid_relaxation_sweeps`); `volume.relaxation` says whether it was kept.
+  bool relaxation_attempted = false;
 
   /// True when every patch's det J is certified positive and the boundary is within
   /// `maximum_boundary_distance` of the mesh.
@@ -165,7 +177,8 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   volume_defaults.maximum_cuboid_aspect = 2.;
   // Inner control points moved where det J is poor or negative (Volume_untangling.h).
   volume_defaults.untangle = true;
-  const Layout_volume_options volume_options = layout_volume_options(np, volume_defaults);
+  Layout_volume_options volume_options = layout_volume_options(np, volume_defaults);
+  volume_options.relaxation = Grid_relaxation_options::none(); // the second attempt's (below)
   model.maximum_boundary_distance = option(np, internal_np::maximum_boundary_distance, 0.02);
   stage("volume construction", [&] { model.volume = layout_volume(model.layout, volume_options); });
   model.grid_attempts.push_back(volume_options.sampling.grid_segments);
@@ -182,6 +195,37 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     const bool far = std::find(reasons.begin(), reasons.end(), "boundary_distance") != reasons.end();
     return !reasons.empty() && model.volume.quality_evaluated && !(far && internal::part_missing(model.volume.distance));
   };
+  // An invalid volume is built again with its surface grids relaxed as one quad mesh
+  // (Grid_relaxation.h): that widens sliver patches and unfolds squeezed cells, but moves
+  // grid lines off ridges and tips, so it is a second attempt, kept only when it leaves
+  // fewer patches uncertified. The finer grids below are not relaxed: at 32 samples a relaxed
+  // volume whose det J nears 0 can cost minutes to certify (3holes.obj), for no valid result.
+  const int sweeps = int(option(np, internal_np::grid_relaxation_sweeps, 100));
+  if(sweeps < 0) throw Invalid_input_error("invalid_parameter", "grid_relaxation_sweeps must not be negative");
+  if(sweeps > 0 && worth_retrying()) {
+    Layout_volume_options relaxed = volume_options;
+    relaxed.relaxation = Grid_relaxation_options();
+    relaxed.relaxation.maximum_sweeps = sweeps;
+    Layout_volume_result r;
+    model.relaxation_attempted = true;
+    try {
+      stage("volume construction, relaxed grids", [&] { r = layout_volume(model.layout, relaxed); });
+    } catch(const Error& e) {
+      model.warnings.push_back("relaxing the surface grids failed: " + e.reason() + ": " + e.what());
+    }
+    const std::size_t before = internal::uncertified_patches(model.volume), after = internal::uncertified_patches(r);
+    const bool valid = r.quality_evaluated && internal::invalidity_reasons(r, model.maximum_boundary_distance).empty();
+    // Fewer uncertified patches count only if the boundary did not move off the mesh.
+    const bool closer = r.distance.relative <= std::max(model.maximum_boundary_distance, model.volume.distance.relative);
+    if(r.quality_evaluated && (valid || (after < before && closer))) {
+      model.warnings.push_back("the surface grids were relaxed (" + std::to_string(r.relaxation.sweeps) + " sweeps): " +
+                               std::to_string(after) + " patches not certified instead of " + std::to_string(before));
+      model.volume = std::move(r);
+    } else if(r.quality_evaluated) {
+      model.warnings.push_back("relaxed surface grids were tried and kept " + std::to_string(after) +
+                               " patches uncertified (" + std::to_string(before) + " without): not used");
+    }
+  }
   for(int N = 2 * volume_options.sampling.grid_segments; N <= maximum_grid && worth_retrying(); N *= 2) {
     Layout_volume_options finer = volume_options;
     finer.sampling.grid_segments = N;

@@ -84,6 +84,10 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("untangling_reverted", V.untangling.reverted)
       .member("untangling_min_relative_det_before", V.untangling.min_relative_determinant_before)
       .member("untangling_min_relative_det_after", V.untangling.min_relative_determinant_after)
+      .member("relaxation_attempted", model.relaxation_attempted)
+      .member("relaxed_grids", V.relaxation.sweeps > 0)
+      .member("relaxation_sweeps", V.relaxation.sweeps)
+      .member("relaxation_last_move", V.relaxation.last_move)
       .member("valid", model.is_valid())
       .member("volume_written", written);
     w.key("grid_attempts").begin_array();
@@ -146,7 +150,7 @@ int run_build(const Arguments& args)
   Parsed_arguments a(args, {"--merge-duplicates", "--drop-isolated", "--no-self-intersection-test", "--allow-invalid", "--quiet",
                       "--no-untangle"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
-                      "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid"});
+                      "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--relax-sweeps"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
   if(out.empty()) throw PI::Invalid_input_error("bad_arguments", "build needs -o OUT.xml");
@@ -157,6 +161,7 @@ int run_build(const Arguments& args)
   const double max_distance = fraction_option(a, "--max-distance", 0.02, 0., 1.);
   const int refinements = positive_option(a, "--max-refinements", 2, 0, 5);
   const int max_grid = positive_option(a, "--max-grid", std::min(2 * grid, 512), grid, 512);
+  const int sweeps = positive_option(a, "--relax-sweeps", 100, 0, 100000);
   const bool verbose = !a.has("--quiet") && isatty(2);
   auto progress = [&](const std::string& stage) {
     if(verbose) std::cerr << "polycube_iga: " << stage << "...\n";
@@ -170,7 +175,7 @@ int run_build(const Arguments& args)
   const auto model = PI::build_trivariate_model(
     in.mesh, PI::parameters::grid_resolution(grid).spline_degree(degree).cut_criterion(criterion).boundary_layer(layer)
       .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
-      .maximum_refinements(refinements).maximum_grid_resolution(max_grid),
+      .maximum_refinements(refinements).maximum_grid_resolution(max_grid).grid_relaxation_sweeps(sweeps),
     progress);
 
   const bool write_volume = model.is_valid() || a.has("--allow-invalid");
@@ -210,7 +215,7 @@ Register_command build_command("build", {
   "usage: polycube_iga build MESH -o OUT.xml [--vtu OUT.vtu] [--layout-vtu L.vtu] [--layout-json L.json]\n"
   "                          [--report R.json] [--grid N] [--degree P] [--criterion length|minima|symmetry]\n"
   "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--max-grid M]\n"
-  "                          [--no-untangle] [--allow-invalid]\n"
+  "                          [--relax-sweeps S] [--no-untangle] [--allow-invalid]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
   "  --layout-vtu L    the polycube layout on the surface: patches, arcs, nodes\n"
@@ -220,6 +225,9 @@ Register_command build_command("build", {
   "  --grid N          samples per patch side (default 16)   --degree P  spline degree (default 3)\n"
   "  --max-grid M      if the volume is not valid, rebuild it with 2N, 4N, ... samples up to M\n"
   "                    (default 2N; M = N never retries); the first valid one is written\n"
+  "  --relax-sweeps S  if the volume is not valid, build it again with the surface grids relaxed\n"
+  "                    as one quad mesh on the surface (S sweeps, default 100; 0: never) and keep\n"
+  "                    it if fewer patches are left uncertified (finer grids are not relaxed)\n"
   "  --boundary-layer T  depth of the layer of slabs under the surface, as a fraction of the\n"
   "                    shortest arc at each node (default 0.25; 0: one patch per cuboid)\n"
   "  --no-untangle     keep the constructed inner control points; by default those of patches\n"

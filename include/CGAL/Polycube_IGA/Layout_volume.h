@@ -23,6 +23,7 @@
 
 #include <CGAL/Polycube_IGA/Boundary_distance.h>
 #include <CGAL/Polycube_IGA/Bspline_volume_construction.h>
+#include <CGAL/Polycube_IGA/Grid_relaxation.h>
 #include <CGAL/Polycube_IGA/Layout_chains.h>
 #include <CGAL/Polycube_IGA/Layout_padding.h>
 #include <CGAL/Polycube_IGA/Multipatch_volume.h>
@@ -68,6 +69,9 @@ struct Layout_volume_options
   /// patches themselves have folded or reflex corners.
   bool untangle = false;
   Volume_untangling_options untangling;
+  /// Relax the SURFACE grids as one quad mesh on the surface (Grid_relaxation.h) after the
+  /// chains and before the boundary layer; maximum_sweeps = 0 (the default here) skips it.
+  Grid_relaxation_options relaxation = Grid_relaxation_options::none();
   bool evaluate_quality = true;        ///< Jacobians, interface conformity, boundary distance
   int quality_samples_per_span = 5;    ///< Jacobian and conformity sampling
   int distance_samples_per_direction = 32; ///< per boundary side, for the Hausdorff distance
@@ -85,6 +89,7 @@ struct Layout_volume_result
   /// when neither is used (then patch c is cuboid c).
   std::vector<long> core_of, slab_of;
   Volume_untangling_result untangling; ///< what untangle_volume() did (if asked)
+  Grid_relaxation_result relaxation;   ///< what relax_surface_grids() did (if asked)
   /// Per cuboid: fitted with u reversed because its layout frame is left-handed.
   std::vector<bool> mirrored;
   /// Per cuboid: side s (1..6) of the volume patch is side layout_side[c][s-1] of the layout
@@ -450,7 +455,7 @@ template <class Point_3>
 Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout, Patch_grids samples,
                                    const Layout_volume_options& o = Layout_volume_options())
 {
-  if(!(o.boundary_layer > 0.) && !(o.maximum_cuboid_aspect > 0.)) return internal::layout_volume(layout, std::move(samples), o, {});
+  if(!(o.boundary_layer > 0.) && !(o.maximum_cuboid_aspect > 0.) && o.relaxation.maximum_sweeps <= 0) return internal::layout_volume(layout, std::move(samples), o, {});
   const Polycube_layout<Point_3>* L = &layout;
   Chained_layout<Point_3> chained;
   if(o.maximum_cuboid_aspect > 0.) {
@@ -460,6 +465,7 @@ Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout, Patch
     samples = std::move(chained.samples);
     L = &chained.layout;
   }
+  Grid_relaxation_result relaxed = relax_surface_grids(*L, samples, o.relaxation, o.sampling.smooth_interior_patches);
   auto input_cuboid = [&](long c) { return c < 0 || chained.cuboid_of.empty() ? c : chained.cuboid_of[std::size_t(c)]; };
   auto input_patch = [&](long p) { return p < 0 || chained.patch_of.empty() ? p : chained.patch_of[std::size_t(p)]; };
   Layout_volume_options plain = o;
@@ -482,6 +488,7 @@ Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout, Patch
     for(long c : chained.cuboid_of) r.core_of.push_back(c);
     r.slab_of.assign(r.core_of.size(), -1);
   }
+  r.relaxation = relaxed;
   return r;
 }
 
@@ -512,6 +519,7 @@ Layout_volume_options layout_volume_options(const NamedParameters& np, Layout_vo
   base.boundary_layer = option(np, internal_np::boundary_layer, base.boundary_layer);
   base.maximum_cuboid_aspect = option(np, internal_np::maximum_cuboid_aspect, base.maximum_cuboid_aspect);
   base.untangle = option(np, internal_np::untangle_volume, base.untangle);
+  base.relaxation.maximum_sweeps = int(option(np, internal_np::grid_relaxation_sweeps, base.relaxation.maximum_sweeps));
   return base;
 }
 
