@@ -72,15 +72,32 @@ double largest_distance_to_mesh(const Layout& L, const PI::Patch_grids& G)
   return d;
 }
 
+/// A test mesh's layout, its grids at N samples per side, and those grids relaxed.
+struct Relaxed
+{
+  Layout layout;
+  PI::Patch_grids before, after;
+  PI::Grid_relaxation_result result;
+};
+
+Relaxed relaxed(const std::string& name, int N)
+{
+  Relaxed x;
+  x.layout = PI::Cuboid_decomposition<Mesh>()(load(data(name)));
+  x.before = PI::sample_layout_patches(x.layout, PI::parameters::grid_resolution(N));
+  x.after = x.before;
+  x.result = PI::relax_surface_grids(x.layout, x.after, PI::Grid_relaxation_options());
+  return x;
+}
+
 } // namespace
 
 TEST_CASE("relaxed surface grids of eight.off unfold, widen their cells and stay on the mesh", "[grid_relaxation]")
 {
-  const Mesh m = load(data("eight.off"));
-  const Layout L = PI::Cuboid_decomposition<Mesh>()(m);
-  const PI::Patch_grids before = PI::sample_layout_patches(L, PI::parameters::grid_resolution(16));
-  PI::Patch_grids after = before;
-  const PI::Grid_relaxation_result r = PI::relax_surface_grids(L, after, PI::Grid_relaxation_options());
+  const Relaxed x = relaxed("eight.off", 16);
+  const Layout& L = x.layout;
+  const PI::Patch_grids &before = x.before, &after = x.after;
+  const PI::Grid_relaxation_result& r = x.result;
   // Distinct points: nodes, N-1 per surface arc, (N-1)^2 per surface patch.
   std::size_t surface_arcs = 0, surface_patches = 0;
   std::vector<bool> seen(L.arcs.size(), false);
@@ -115,11 +132,10 @@ TEST_CASE("relaxed surface grids of eight.off unfold, widen their cells and stay
 TEST_CASE("grid relaxation keeps boundary loops and, if asked, nodes in place", "[grid_relaxation]")
 {
   // mushroom.off is a disk: its cap spans the boundary loop.
-  const Mesh m = load(data("mushroom.off"));
-  const Layout L = PI::Cuboid_decomposition<Mesh>()(m);
-  const PI::Patch_grids before = PI::sample_layout_patches(L, PI::parameters::grid_resolution(8));
-  PI::Patch_grids after = before;
-  const PI::Grid_relaxation_result r = PI::relax_surface_grids(L, after, PI::Grid_relaxation_options());
+  const Relaxed x = relaxed("mushroom.off", 8);
+  const Layout& L = x.layout;
+  const PI::Patch_grids &before = x.before, &after = x.after;
+  const PI::Grid_relaxation_result& r = x.result;
   CHECK(r.fixed_points > 0);
   std::size_t caps = 0;
   for(std::size_t p = 0; p < L.patches.size(); ++p) {

@@ -33,7 +33,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <memory>
 #include <vector>
 
 namespace CGAL {
@@ -231,18 +230,11 @@ Grid_relaxation_result relax_surface_grids(const Polycube_layout<Point_3>& L, Pa
     s.back() = x[L.arcs[a].nodes[1]];
     for(int k = 1; k < N; ++k) s[std::size_t(k)] = x[std::size_t(Q.arc_point(a, k))];
   }
-  std::unique_ptr<internal::Grid_harmonic_solver> harmonic;
+  internal::Interior_grid_filler interior(N, smooth_interior_patches);
   for(std::size_t p = 0; p < L.patches.size(); ++p) {
-    const auto& pa = L.patches[p];
-    if(pa.kind == Layout::SURFACE) continue;
-    Point_grid& g = G.grids[p];
-    internal::set_patch_border(g, N, L, pa, G.arc_samples);
-    internal::coons_grid_interior(g, N);
-    if(smooth_interior_patches) {
-      if(!harmonic) harmonic.reset(new internal::Grid_harmonic_solver(N));
-      harmonic->solve(g);
-    }
-    internal::set_patch_border(g, N, L, pa, G.arc_samples);
+    if(L.patches[p].kind == Layout::SURFACE) continue;
+    internal::set_patch_border(G.grids[p], N, L, L.patches[p], G.arc_samples);
+    interior.fill(G.grids[p]);
   }
   return r;
 }

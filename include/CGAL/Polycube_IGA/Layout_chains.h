@@ -207,7 +207,7 @@ Chained_layout<Point_3> split_long_cuboids(const Polycube_layout<Point_3>& layou
     cum[a] = internal::cumulative_lengths(pts);
   }
   std::vector<int> local_of(layout.mesh.num_vertices(), -1);
-  std::unique_ptr<internal::Grid_harmonic_solver> harmonic;
+  internal::Interior_grid_filler interior(N, so.smooth_interior_patches);
 
   for(std::size_t c = 0; c < nc; ++c) {
     const auto& cu = layout.cuboids[c];
@@ -361,11 +361,7 @@ Chained_layout<Point_3> split_long_cuboids(const Polycube_layout<Point_3>& layou
       }
       Point_grid g(N + 1, N + 1);
       internal::set_patch_border(g, N, L, sp, G.arc_samples);
-      internal::coons_grid_interior(g, N);
-      if(so.smooth_interior_patches) {
-        if(!harmonic) harmonic.reset(new internal::Grid_harmonic_solver(N));
-        harmonic->solve(g); // the border rows are kept
-      }
+      interior.fill(g);
       section[std::size_t(l)] = add_patch(sp, std::move(g), -1, 0);
     }
     for(int m = 0; m < k; ++m) {

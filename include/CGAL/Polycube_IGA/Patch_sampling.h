@@ -231,6 +231,28 @@ private:
   Sparse_cholesky chol_;
 };
 
+/// Fills the interior of CAP and INTERFACE grids whose border rows are set: the discrete
+/// Coons patch, replaced (if `smooth`) by the discrete harmonic one; the harmonic solver is
+/// factored on first use and shared by every grid filled. The border rows are kept.
+class Interior_grid_filler
+{
+public:
+  Interior_grid_filler(int N, bool smooth) : N_(N), smooth_(smooth) {}
+
+  void fill(Point_grid& g)
+  {
+    coons_grid_interior(g, N_);
+    if(!smooth_) return;
+    if(!harmonic_) harmonic_.reset(new Grid_harmonic_solver(N_));
+    harmonic_->solve(g);
+  }
+
+private:
+  int N_;
+  bool smooth_;
+  std::unique_ptr<Grid_harmonic_solver> harmonic_;
+};
+
 /// One surface patch as its own small triangle mesh with its uv embedding in [0,1]^2.
 struct Surface_patch_map
 {
@@ -544,7 +566,7 @@ Patch_grids sample_layout_patches(const Polycube_layout<Point_3>& layout, const 
   r.flipped_triangles.assign(layout.patches.size(), 0);
   r.unlocated_points.assign(layout.patches.size(), 0);
   std::vector<int> local_of(layout.mesh.num_vertices(), -1);
-  std::unique_ptr<internal::Grid_harmonic_solver> harmonic;
+  internal::Interior_grid_filler interior(N, o.smooth_interior_patches);
   for(std::size_t p = 0; p < layout.patches.size(); ++p) {
     const auto& pa = layout.patches[p];
     Point_grid& g = r.grids[p];
@@ -555,11 +577,7 @@ Patch_grids sample_layout_patches(const Polycube_layout<Point_3>& layout, const 
       r.flipped_triangles[p] = M.flipped;
       r.unlocated_points[p] = internal::sample_surface_grid(M, N, g);
     } else {
-      internal::coons_grid_interior(g, N);
-      if(o.smooth_interior_patches) {
-        if(!harmonic) harmonic.reset(new internal::Grid_harmonic_solver(N));
-        harmonic->solve(g);
-      }
+      interior.fill(g);
     }
     // The border rows stay the arc samples, bit for bit.
     internal::set_patch_border(g, N, layout, pa, r.arc_samples);
