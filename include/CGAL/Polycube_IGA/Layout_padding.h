@@ -19,10 +19,14 @@
 //   * every arc a gets an inner arc a' (the chord of its inner nodes plus half the arc's
 //     deviation from its own chord: straight arcs and flat faces stay so, round ones get
 //     half as round; an arc that bulges into the solid by more than the layer's depth,
-//     around a hole, keeps enough of it to stay inside) and a wall: the quad between a and a', closed by the straight radial
-//     segments n -> n';
-//   * every patch p gets an inner patch p' spanned by the inner arcs of its sides (discrete
-//     Coons + harmonic grid, like every interior patch);
+//     around a hole, keeps enough of it to stay inside) and a wall: the quad between a and
+//     a', closed by the straight radial segments n -> n';
+//   * where a core or slab corner at an inner node is flat or folded (its three edge
+//     tangents nearly coplanar: a node on the smooth middle of an interface's cycle), the
+//     inner arcs' ends there are turned towards their chords (open_inner_corners());
+//   * every patch p gets an inner patch p' spanned by the inner arcs of its sides (the
+//     discrete Coons patch of its border plus a quarter of p's own relief over its Coons
+//     patch);
 //   * the core cuboids are the layout's cuboids on the inner nodes, arcs and patches; the
 //     slab of a SURFACE patch p has p on top, p' below and the walls of p's arcs around.
 //
@@ -39,6 +43,7 @@
 #include <CGAL/Polycube_IGA/Errors.h>
 #include <CGAL/Polycube_IGA/Patch_sampling.h>
 #include <CGAL/Polycube_IGA/Polycube_layout.h>
+#include <CGAL/Polycube_IGA/internal/cuboid_frames.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -67,6 +72,15 @@ struct Padding_options
   double maximum_thickness_fraction = 1. / 3.;
   /// Along an arc, the depth changes by at most this fraction of the arc's length.
   double maximum_depth_slope = 0.05;
+  /// Where a core or slab corner at an inner node has a scaled det (of its three edge
+  /// tangents) below this, the inner arcs' end tangents there are turned to raise the
+  /// smallest one (internal::open_inner_corners()); 0 keeps the inner arcs as built.
+  double corner_threshold = 0.3;
+  /// The largest turn (degrees) of an inner arc's end tangent by open_inner_corners().
+  double maximum_corner_turn = 30.;
+  /// An inner patch is the Coons patch of its inner arcs plus this fraction of its outer
+  /// patch's relief (the outer grid minus the Coons patch of its own border).
+  double inner_relief = 0.25;
 };
 
 /// A padded layout: the layout of cores and slabs, its grids, and where each cuboid came from.
@@ -177,6 +191,153 @@ private:
   Tree tree_;
   double offset_ = 0.;
 };
+
+/// A corner of a cuboid of a padded layout at an inner node: its three edge arcs.
+struct Inner_corner
+{
+  std::array<std::size_t, 3> arcs{}; ///< edge arcs along u, v, w from the corner's node
+  int sign = 1;                      ///< +1 where (u, v, w) is right-handed in a sound cuboid
+};
+
+/// Per node of a padded layout (inner nodes nn..2nn-1 only), the cuboid corners there.
+template <class Layout>
+std::vector<std::vector<Inner_corner>> inner_corners(const Layout& L, std::size_t nn)
+{
+  const std::vector<int> handed = frame_handedness(L);
+  std::vector<std::vector<Inner_corner>> corners(L.nodes.size());
+  for(std::size_t c = 0; c < L.cuboids.size(); ++c) {
+    const auto& cu = L.cuboids[c];
+    if(handed[c] == 0) continue;
+    std::vector<std::size_t> own; // the cuboid's arcs, to tell apart arcs with the same ends
+    for(std::size_t p : cu.patches)
+      for(std::size_t a : L.patches[p].arcs) own.push_back(a);
+    auto arc_between = [&](std::size_t n0, std::size_t n1) -> long {
+      for(std::size_t a : own) {
+        const auto& e = L.arcs[a].nodes;
+        if(e[0] != e[1] && ((e[0] == n0 && e[1] == n1) || (e[0] == n1 && e[1] == n0))) return long(a);
+      }
+      return -1;
+    };
+    for(int q = 0; q < 8; ++q) {
+      const std::size_t n = cu.nodes[std::size_t(q)];
+      if(n < nn) continue;
+      Inner_corner ic;
+      ic.sign = handed[c] * (((q & 1) + ((q >> 1) & 1) + (q >> 2)) % 2 ? -1 : 1);
+      bool ok = true;
+      for(int d = 0; d < 3 && ok; ++d) {
+        const long a = arc_between(n, cu.nodes[std::size_t(q ^ (1 << d))]);
+        ok = a >= 0;
+        if(ok) ic.arcs[std::size_t(d)] = std::size_t(a);
+      }
+      if(ok) corners[n].push_back(ic);
+    }
+  }
+  return corners;
+}
+
+/// Unit tangent of arc samples `s` leaving their first (or last) point; zero if degenerate.
+inline Eigen::Vector3d end_tangent(const std::vector<Eigen::Vector3d>& s, bool at_start)
+{
+  const std::size_t m = s.size() - 1;
+  const Eigen::Vector3d d = at_start ? Eigen::Vector3d(s[1] - s[0]) : Eigen::Vector3d(s[m - 1] - s[m]);
+  const double l = d.norm();
+  return l > 0. ? Eigen::Vector3d(d / l) : Eigen::Vector3d::Zero();
+}
+
+/// The end tangents of a padded layout's arcs, and the worst corner at a node: the smallest
+/// signed det of its corners' three unit edge tangents (1 for a cube's corner, <= 0 folded).
+template <class Layout>
+class Corner_tangents
+{
+public:
+  Corner_tangents(const Layout& L, const std::vector<std::vector<Eigen::Vector3d>>& arc_samples, std::size_t nn)
+    : L_(L), corners_(inner_corners(L, nn)), tangent_(L.arcs.size())
+  {
+    for(std::size_t a = 0; a < L.arcs.size(); ++a)
+      for(int e = 0; e < 2; ++e) tangent_[a][std::size_t(e)] = end_tangent(arc_samples[a], e == 0);
+  }
+  Eigen::Vector3d& at(std::size_t a, std::size_t n) { return tangent_[a][L_.arcs[a].nodes[0] == n ? 0 : 1]; }
+  bool has_corners(std::size_t n) const { return !corners_[n].empty(); }
+  double worst(std::size_t n)
+  {
+    double w = std::numeric_limits<double>::infinity();
+    for(const Inner_corner& ic : corners_[n])
+      w = std::min(w, ic.sign * at(ic.arcs[0], n).dot(at(ic.arcs[1], n).cross(at(ic.arcs[2], n))));
+    return w;
+  }
+
+private:
+  const Layout& L_;
+  std::vector<std::vector<Inner_corner>> corners_;
+  std::vector<std::array<Eigen::Vector3d, 2>> tangent_;
+};
+
+/// Turns the end tangents of inner arcs (na..2na-1, between inner nodes nn..2nn-1) so that
+/// the cuboid corners at inner nodes open up. Why: an inner arc is its chord plus half the
+/// outer arc's bulge (pad_layout()), so it leaves its node about as the outer arc leaves the
+/// surface; where the layout puts a node on the smooth middle of an interface's cycle, the
+/// two arcs of that cycle leave the inner node in almost opposite directions, the core's
+/// corner there is flat (a face angle near 180 degrees) and its det J <= 0 (eight.off: 5
+/// cores, although the chords there make sound corners). Per inner node whose worst corner
+/// (Corner_tangents) is below `threshold`, each incident inner arc's end tangent d is moved,
+/// one arc at a time, along the pencil towards (and past) its chord c,
+/// t = normalise(d + beta (c - d)), beta in [-0.5, 1.5] by 0.25, turning by at most
+/// `maximum_turn` degrees, to the value that most raises the node's worst corner; three passes.
+/// The turn is bounded because the bend below is not seen by the corners: on mushroom.off's
+/// thin rim, larger turns fold a slab. The samples are then bent near that end by a Hermite
+/// bump over half the arc, so the first sample step points along t and the arc's other half
+/// is unchanged. Deterministic (nodes, arcs and betas in index order).
+template <class Layout>
+void open_inner_corners(const Layout& L, std::vector<std::vector<Eigen::Vector3d>>& arc_samples, std::size_t na, std::size_t nn,
+                        double threshold, double maximum_turn)
+{
+  Corner_tangents<Layout> T(L, arc_samples, nn);
+  const int N = int(arc_samples.front().size()) - 1;
+  const int half = std::max(1, N / 2);
+  const double cos_turn = std::cos(maximum_turn * 3.14159265358979323846 / 180.);
+  for(std::size_t n = nn; n < L.nodes.size(); ++n) {
+    if(!T.has_corners(n) || !(T.worst(n) < threshold)) continue;
+    std::vector<std::size_t> free; // inner arcs at n
+    for(std::size_t a = na; a < 2 * na && a < L.arcs.size(); ++a)
+      if((L.arcs[a].nodes[0] == n) != (L.arcs[a].nodes[1] == n)) free.push_back(a);
+    std::vector<Eigen::Vector3d> start, chord;
+    for(std::size_t a : free) {
+      start.push_back(T.at(a, n));
+      const auto& s = arc_samples[a];
+      const Eigen::Vector3d c = L.arcs[a].nodes[0] == n ? Eigen::Vector3d(s.back() - s.front()) : Eigen::Vector3d(s.front() - s.back());
+      chord.push_back(c.norm() > 0. ? Eigen::Vector3d(c.normalized()) : start.back());
+    }
+    double best = T.worst(n);
+    for(int pass = 0; pass < 3; ++pass)
+      for(std::size_t f = 0; f < free.size(); ++f) {
+        Eigen::Vector3d keep = T.at(free[f], n);
+        for(int b = -2; b <= 6; ++b) {
+          const Eigen::Vector3d t = start[f] + 0.25 * b * (chord[f] - start[f]);
+          if(!(t.norm() > 1e-9) || t.normalized().dot(start[f]) < cos_turn) continue;
+          T.at(free[f], n) = t.normalized();
+          const double w = T.worst(n);
+          if(w > best + 1e-12) best = w, keep = T.at(free[f], n);
+        }
+        T.at(free[f], n) = keep;
+      }
+    // Bend each turned arc near this end: s_k += phi(k) (|e| t - e), e its first step, with
+    // phi(0) = 0, phi(1) = 1 and phi and its slope vanishing at k = half (a Hermite bump).
+    for(std::size_t f = 0; f < free.size(); ++f) {
+      const std::size_t a = free[f];
+      if((T.at(a, n) - start[f]).norm() < 1e-12) continue;
+      auto& s = arc_samples[a];
+      const bool from_start = L.arcs[a].nodes[0] == n;
+      auto idx = [&](int k) { return std::size_t(from_start ? k : N - k); };
+      const Eigen::Vector3d e = s[idx(1)] - s[idx(0)];
+      const Eigen::Vector3d delta = e.norm() * T.at(a, n) - e;
+      const double x1 = 1. / half, phi1 = x1 * (1. - x1) * (1. - x1);
+      for(int k = 1; k < half; ++k) {
+        const double x = double(k) / half;
+        s[idx(k)] += (x * (1. - x) * (1. - x) / phi1) * delta;
+      }
+    }
+  }
+}
 
 /// Per point, Mesh_probe::thickness() along its normal.
 template <class Mesh>
@@ -353,12 +514,6 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
   // walls (2np + a). Inner and wall grids: the Coons patches of their border samples. Not
   // harmonic: a uniform grid Laplacian treats a long thin wall as a square and pulls its
   // middle towards the chord, out of the layer.
-  auto fill = [&](const typename Layout::Patch& pa) {
-    Point_grid g(N + 1, N + 1);
-    internal::set_patch_border(g, N, L, pa, G.arc_samples);
-    internal::coons_grid_interior(g, N);
-    G.grids.push_back(std::move(g));
-  };
   L.patches = layout.patches;
   G.grids = samples.grids;
   for(std::size_t p = 0; p < np; ++p) {
@@ -370,7 +525,6 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
       in.arcs[std::size_t(i)] = na + pa.arcs[std::size_t(i)];
     }
     L.patches.push_back(in);
-    fill(in);
   }
   for(std::size_t a = 0; a < na; ++a) {
     const std::size_t n0 = layout.arcs[a].nodes[0], n1 = layout.arcs[a].nodes[1];
@@ -380,7 +534,6 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
     wall.corners = {{n0, n1, nn + n1, nn + n0}};
     wall.arcs = {{a, 2 * na + n1, na + a, 2 * na + n0}};
     L.patches.push_back(wall);
-    fill(wall);
   }
   G.flipped_triangles = samples.flipped_triangles;
   G.flipped_triangles.resize(L.patches.size(), 0);
@@ -411,6 +564,24 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
     L.cuboids.push_back(slab);
     r.core_of.push_back(-1);
     r.slab_of.push_back(long(p));
+  }
+
+  if(o.corner_threshold > 0.) internal::open_inner_corners(L, G.arc_samples, na, nn, o.corner_threshold, o.maximum_corner_turn);
+  // Inner patches and walls: the Coons patches of their (final) border samples; an inner
+  // patch adds a fraction of its outer patch's relief, so a slab under a saddle or a dome
+  // keeps some of its depth in the middle instead of thinning towards the chords' patch.
+  for(std::size_t p = np; p < L.patches.size(); ++p) {
+    Point_grid g(N + 1, N + 1);
+    internal::set_patch_border(g, N, L, L.patches[p], G.arc_samples);
+    internal::coons_grid_interior(g, N);
+    if(p < 2 * np && o.inner_relief != 0.) {
+      const Point_grid& outer_grid = samples.grids[p - np];
+      Point_grid flat = outer_grid;
+      internal::coons_grid_interior(flat, N);
+      for(int j = 1; j < N; ++j)
+        for(int i = 1; i < N; ++i) g(i, j) += o.inner_relief * (outer_grid(i, j) - flat(i, j));
+    }
+    G.grids.push_back(std::move(g));
   }
   return r;
 }
