@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <tuple>
 
@@ -488,6 +489,14 @@ TEST_CASE("the boundary layer turns inner arc ends to open flat corners of cores
     const auto& arc0 = after.samples.arc_samples[pa.arcs[0]];
     const bool forward = after.layout.arcs[pa.arcs[0]].nodes[0] == pa.corners[0];
     for(int i = 0; i <= N; ++i) CHECK(g(i, 0) == arc0[std::size_t(forward ? i : N - i)]);
+  }
+  // Options out of range are named, not used.
+  for(int k = 0; k < 3; ++k) {
+    PI::Padding_options bad;
+    if(k == 0) bad.inner_relief = std::numeric_limits<double>::quiet_NaN();
+    if(k == 1) bad.maximum_corner_turn = 120.;
+    if(k == 2) bad.corner_threshold = -1.;
+    CHECK_THROWS_AS(PI::pad_layout(C.layout, C.samples, bad), PI::Invalid_input_error);
   }
   // Deterministic.
   const PI::Padded_layout<Point> again = PI::pad_layout(C.layout, C.samples);

@@ -238,6 +238,7 @@ std::vector<std::vector<Inner_corner>> inner_corners(const Layout& L, std::size_
 /// Unit tangent of arc samples `s` leaving their first (or last) point; zero if degenerate.
 inline Eigen::Vector3d end_tangent(const std::vector<Eigen::Vector3d>& s, bool at_start)
 {
+  if(s.size() < 2) return Eigen::Vector3d::Zero();
   const std::size_t m = s.size() - 1;
   const Eigen::Vector3d d = at_start ? Eigen::Vector3d(s[1] - s[0]) : Eigen::Vector3d(s[m - 1] - s[m]);
   const double l = d.norm();
@@ -291,6 +292,7 @@ template <class Layout>
 void open_inner_corners(const Layout& L, std::vector<std::vector<Eigen::Vector3d>>& arc_samples, std::size_t na, std::size_t nn,
                         double threshold, double maximum_turn)
 {
+  if(arc_samples.empty() || arc_samples.front().size() < 3) return;
   Corner_tangents<Layout> T(L, arc_samples, nn);
   const int N = int(arc_samples.front().size()) - 1;
   const int half = std::max(1, N / 2);
@@ -372,6 +374,10 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
     throw Invalid_input_error("invalid_grid", "padding needs the layout's patch grids with at least 2 segments");
   if(!(o.thickness > 0. && o.thickness < 0.5))
     throw Invalid_input_error("invalid_parameter", "the boundary layer thickness must lie in (0, 0.5)");
+  if(!(o.corner_threshold >= 0. && o.corner_threshold <= 1.) || !(o.maximum_corner_turn >= 0. && o.maximum_corner_turn <= 90.) ||
+     !(o.inner_relief >= 0. && o.inner_relief <= 1.))
+    throw Invalid_input_error("invalid_parameter",
+                              "the boundary layer's corner_threshold and inner_relief must lie in [0, 1], its maximum_corner_turn in [0, 90] degrees");
 
   // Outward normals at the nodes, from the SURFACE grids (their u x v points out of the
   // solid, Patch_sampling.h): sums of the unit normals at the corners of the surface
