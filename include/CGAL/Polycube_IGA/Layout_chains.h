@@ -66,10 +66,9 @@ namespace internal {
 inline double end_tangent_angle(const std::vector<Eigen::Vector3d>& pts)
 {
   if(pts.size() < 3) return 0.;
-  const Eigen::Vector3d a = pts[1] - pts[0], b = pts.back() - pts[pts.size() - 2];
-  const double na = a.norm(), nb = b.norm();
-  if(!(na > 0.) || !(nb > 0.)) return 0.;
-  return std::acos(std::max(-1., std::min(1., a.dot(b) / (na * nb))));
+  const Eigen::Vector3d a = end_tangent(pts, true), b = -end_tangent(pts, false);
+  if(a.isZero() || b.isZero()) return 0.;
+  return std::acos(std::max(-1., std::min(1., a.dot(b))));
 }
 
 } // namespace internal

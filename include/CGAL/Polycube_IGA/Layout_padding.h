@@ -235,16 +235,6 @@ std::vector<std::vector<Inner_corner>> inner_corners(const Layout& L, std::size_
   return corners;
 }
 
-/// Unit tangent of arc samples `s` leaving their first (or last) point; zero if degenerate.
-inline Eigen::Vector3d end_tangent(const std::vector<Eigen::Vector3d>& s, bool at_start)
-{
-  if(s.size() < 2) return Eigen::Vector3d::Zero();
-  const std::size_t m = s.size() - 1;
-  const Eigen::Vector3d d = at_start ? Eigen::Vector3d(s[1] - s[0]) : Eigen::Vector3d(s[m - 1] - s[m]);
-  const double l = d.norm();
-  return l > 0. ? Eigen::Vector3d(d / l) : Eigen::Vector3d::Zero();
-}
-
 /// The end tangents of a padded layout's arcs, and the worst corner at a node: the smallest
 /// signed det of its corners' three unit edge tangents (1 for a cube's corner, <= 0 folded).
 template <class Layout>
@@ -517,9 +507,7 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
   }
 
   // Patches: the layout's (0..np-1, only the SURFACE ones stay in use), inner (np + p),
-  // walls (2np + a). Inner and wall grids: the Coons patches of their border samples. Not
-  // harmonic: a uniform grid Laplacian treats a long thin wall as a square and pulls its
-  // middle towards the chord, out of the layer.
+  // walls (2np + a); the grids of the new ones are filled once their arcs are final (below).
   L.patches = layout.patches;
   G.grids = samples.grids;
   for(std::size_t p = 0; p < np; ++p) {
@@ -573,9 +561,11 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
   }
 
   if(o.corner_threshold > 0.) internal::open_inner_corners(L, G.arc_samples, na, nn, o.corner_threshold, o.maximum_corner_turn);
-  // Inner patches and walls: the Coons patches of their (final) border samples; an inner
-  // patch adds a fraction of its outer patch's relief, so a slab under a saddle or a dome
-  // keeps some of its depth in the middle instead of thinning towards the chords' patch.
+  // Inner patches and walls: the Coons patches of their (final) border samples. Not
+  // harmonic: a uniform grid Laplacian treats a long thin wall as a square and pulls its
+  // middle towards the chord, out of the layer. An inner patch adds a fraction of its outer
+  // patch's relief, so a slab under a saddle or a dome keeps some of its depth in the middle
+  // instead of thinning towards the chords' patch.
   for(std::size_t p = np; p < L.patches.size(); ++p) {
     Point_grid g(N + 1, N + 1);
     internal::set_patch_border(g, N, L, L.patches[p], G.arc_samples);

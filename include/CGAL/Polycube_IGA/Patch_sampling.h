@@ -120,6 +120,16 @@ inline std::vector<double> cumulative_lengths(const std::vector<Eigen::Vector3d>
   return c;
 }
 
+/// Unit tangent of arc samples `s` leaving their first (or last) point; zero if degenerate.
+inline Eigen::Vector3d end_tangent(const std::vector<Eigen::Vector3d>& s, bool at_start)
+{
+  if(s.size() < 2) return Eigen::Vector3d::Zero();
+  const std::size_t m = s.size() - 1;
+  const Eigen::Vector3d d = at_start ? Eigen::Vector3d(s[1] - s[0]) : Eigen::Vector3d(s[m - 1] - s[m]);
+  const double l = d.norm();
+  return l > 0. ? Eigen::Vector3d(d / l) : Eigen::Vector3d::Zero();
+}
+
 /// N+1 points equally spaced in arc length along a polyline; the ends are its end points
 /// exactly (so every arc meeting at a node starts from the same bits).
 inline std::vector<Eigen::Vector3d> sample_polyline(const std::vector<Eigen::Vector3d>& pts,
