@@ -24,6 +24,7 @@
 #include <functional>
 #include <iomanip>
 #include <sstream>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -179,6 +180,11 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   volume_defaults.untangle = true;
   Layout_volume_options volume_options = layout_volume_options(np, volume_defaults);
   volume_options.relaxation = Grid_relaxation_options::none(); // the second attempt's (below)
+  // Untangling costs more than building (eight.off: 15 s against 1 s) and cannot repair
+  // folded surface grids, so the first two constructions are compared untangled-free and
+  // the better one is untangled (below).
+  const bool untangle = volume_options.untangle;
+  volume_options.untangle = false;
   model.maximum_boundary_distance = option(np, internal_np::maximum_boundary_distance, 0.02);
   stage("volume construction", [&] { model.volume = layout_volume(model.layout, volume_options); });
   model.grid_attempts.push_back(volume_options.sampling.grid_segments);
@@ -202,6 +208,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   // volume whose det J nears 0 can cost minutes to certify (3holes.obj), for no valid result.
   const int sweeps = int(option(np, internal_np::grid_relaxation_sweeps, 100));
   if(sweeps < 0) throw Invalid_input_error("invalid_parameter", "grid_relaxation_sweeps must not be negative");
+  std::optional<Layout_volume_result> other; // the construction not chosen, if any
   if(sweeps > 0 && worth_retrying()) {
     Layout_volume_options relaxed = volume_options;
     relaxed.relaxation = Grid_relaxation_options();
@@ -219,16 +226,40 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     const bool closer = r.distance.relative <= std::max(model.maximum_boundary_distance, model.volume.distance.relative);
     if(r.quality_evaluated && (valid || (after < before && closer))) {
       model.warnings.push_back("the surface grids were relaxed (" + std::to_string(r.relaxation.sweeps) + " sweeps): " +
-                               std::to_string(after) + " patches not certified instead of " + std::to_string(before));
-      model.volume = std::move(r);
+                               std::to_string(after) + " patches not certified instead of " + std::to_string(before) +
+                               " (before untangling)");
+      std::swap(model.volume, r);
     } else if(r.quality_evaluated) {
       model.warnings.push_back("relaxed surface grids were tried and kept " + std::to_string(after) +
-                               " patches uncertified (" + std::to_string(before) + " without): not used");
+                               " patches uncertified (" + std::to_string(before) + " without, before untangling): not used");
+    }
+    if(r.quality_evaluated) other = std::move(r);
+  }
+  // The better construction is untangled; if it stays invalid, the other one too, and the
+  // one with fewer uncertified patches (its boundary no farther off the mesh) is kept.
+  if(untangle && worth_retrying()) {
+    stage("volume untangling", [&] { untangle_layout_volume(model.layout, model.volume, volume_options); });
+    if(worth_retrying() && other) {
+      stage("volume untangling, other grids", [&] { untangle_layout_volume(model.layout, *other, volume_options); });
+      const std::size_t kept = internal::uncertified_patches(model.volume), alternative = internal::uncertified_patches(*other);
+      const bool valid = internal::invalidity_reasons(*other, model.maximum_boundary_distance).empty();
+      const bool closer = other->distance.relative <= std::max(model.maximum_boundary_distance, model.volume.distance.relative);
+      if(valid || (alternative < kept && closer)) {
+        model.warnings.push_back("untangled, the " + std::string(other->relaxation.sweeps > 0 ? "relaxed" : "unrelaxed") +
+                                 " surface grids leave " + std::to_string(alternative) + " patches uncertified instead of " +
+                                 std::to_string(kept) + ": they are used");
+        std::swap(model.volume, *other);
+      }
     }
   }
   for(int N = 2 * volume_options.sampling.grid_segments; N <= maximum_grid && worth_retrying(); N *= 2) {
     Layout_volume_options finer = volume_options;
     finer.sampling.grid_segments = N;
+    // Twice the spans: 8 times the control points and samples per patch. A quarter of the
+    // control-point budget per doubling keeps the finer untangling within minutes.
+    finer.untangle = untangle;
+    finer.untangling.maximum_control_points = volume_options.untangling.maximum_control_points * std::size_t(volume_options.sampling.grid_segments) *
+                                              std::size_t(volume_options.sampling.grid_segments) / (std::size_t(N) * std::size_t(N));
     Layout_volume_result r;
     model.grid_attempts.push_back(N);
     // The retry is a bonus: if the finer grid cannot be built (a stage rejects its grids),

@@ -98,6 +98,8 @@ struct Layout_volume_result
   std::vector<std::array<int, 6>> layout_side;
   /// Per cuboid: signed volume enclosed by its six side grids in the layout's frame.
   std::vector<double> enclosed_volume;
+  /// The boundary sides on the layout's SURFACE patches: those the boundary distance measures.
+  std::vector<Patch_side> surface_sides;
 
   bool quality_evaluated = false;
   Multipatch_quality quality;  ///< sampled and certified Jacobians per patch, interface conformity
@@ -211,6 +213,26 @@ inline Patch_interface interface_from_nodes(std::size_t pa, int sa, const std::a
 } // namespace internal
 
 namespace internal {
+
+// The end of layout_volume(): untangling (if o.untangle) and quality (if o.evaluate_quality),
+// the boundary distance measured on r.surface_sides.
+template <class TriangleMesh>
+void untangle_and_evaluate(const TriangleMesh& mesh, Layout_volume_result& r, const Layout_volume_options& o)
+{
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  if(o.untangle) r.untangling = untangle_volume(r.volume, o.untangling);
+  const auto t1 = Clock::now();
+  r.untangling_seconds = std::chrono::duration<double>(t1 - t0).count();
+  if(!o.evaluate_quality) return;
+  r.quality = evaluate_quality(r.volume, o.quality_samples_per_span, o.bound);
+  Multipatch_volume on_surface; // the same patches, boundary = sides on SURFACE patches
+  for(const auto& v : r.volume.patches()) on_surface.add_patch(v);
+  for(const Patch_side& b : r.surface_sides) on_surface.add_boundary(b);
+  if(!on_surface.boundaries().empty()) r.distance = boundary_hausdorff_distance(on_surface, mesh, o.distance_samples_per_direction);
+  r.quality_evaluated = true;
+  r.quality_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
+}
 
 // layout_volume() without a boundary layer; cuboid c is built without interior smoothing
 // where coons_only[c] (if given).
@@ -326,25 +348,12 @@ Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout, Patch
   for(std::size_t c = 0; c < layout.cuboids.size(); ++c)
     for(int s = 1; s <= 6; ++s)
       if(!glued[c][std::size_t(s - 1)]) r.volume.add_boundary({c, s});
-  const auto t_fit = Clock::now();
-  r.fitting_seconds = std::chrono::duration<double>(t_fit - t0).count();
-  if(o.untangle) r.untangling = untangle_volume(r.volume, o.untangling);
-  const auto t1 = Clock::now();
-  r.untangling_seconds = std::chrono::duration<double>(t1 - t_fit).count();
-
-  if(o.evaluate_quality) {
-    r.quality = evaluate_quality(r.volume, o.quality_samples_per_span, o.bound);
-    Multipatch_volume on_surface; // the same patches, boundary = sides on SURFACE patches
-    for(const auto& v : r.volume.patches()) on_surface.add_patch(v);
-    for(const Patch_side& b : r.volume.boundaries()) {
-      const int ls = r.layout_side[b.patch][std::size_t(b.side - 1)];
-      if(layout.patches[layout.cuboids[b.patch].patches[std::size_t(ls - 1)]].kind == Layout::SURFACE) on_surface.add_boundary(b);
-    }
-    if(!on_surface.boundaries().empty())
-      r.distance = boundary_hausdorff_distance(on_surface, layout.mesh, o.distance_samples_per_direction);
-    r.quality_evaluated = true;
-    r.quality_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
+  r.fitting_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  for(const Patch_side& b : r.volume.boundaries()) {
+    const int ls = r.layout_side[b.patch][std::size_t(b.side - 1)];
+    if(layout.patches[layout.cuboids[b.patch].patches[std::size_t(ls - 1)]].kind == Layout::SURFACE) r.surface_sides.push_back(b);
   }
+  untangle_and_evaluate(layout.mesh, r, o);
   r.samples = std::move(samples);
   return r;
 }
@@ -414,6 +423,18 @@ Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout, const
   Layout_volume_result r = layout_volume(layout, std::move(g), o);
   r.sampling_seconds = ts;
   return r;
+}
+
+/// Untangles the volume of `r`, built by layout_volume() from `layout` with `untangle` off,
+/// with `o.untangling` (Volume_untangling.h), and evaluates its quality again: what
+/// layout_volume() with `o.untangle` would have given, for a caller that first compares
+/// constructions (build_trivariate_model() untangles only the better of two).
+template <class Point_3>
+void untangle_layout_volume(const Polycube_layout<Point_3>& layout, Layout_volume_result& r, const Layout_volume_options& o)
+{
+  Layout_volume_options u = o;
+  u.untangle = true;
+  internal::untangle_and_evaluate(layout.mesh, r, u);
 }
 
 /// The fields of `base` that the named parameters of layout_volume() override, overridden.

@@ -39,18 +39,20 @@ namespace Polycube_IGA {
 /// Options of untangle_volume().
 struct Volume_untangling_options
 {
-  int points_per_span = 3; ///< Gauss-Lobatto points per span and direction, ends included (2..4)
+  /// Gauss-Lobatto points per span and direction, ends included (2..5). With 3, det J
+  /// can be positive at every sample and negative between (double-torus-example.off).
+  int points_per_span = 4;
   double volume_weight = 0.25; ///< theta: weight of the volume term against the shape term
   /// Patches with a sampled scaled Jacobian below this (at Gauss points and span corners)
   /// are optimised, together with their interface neighbours.
   double scaled_jacobian_threshold = 0.05;
   /// Cost guards: with more patches to optimise than this, or more control points in them
   /// than maximum_control_points, nothing is done (`skipped`). Cost grows with the control
-  /// points: about 1 s for the 7 patches of the sphere at the default grid (4 spans, 343
-  /// points each), 9 s for the 30 of pipe.off, 2 minutes for head.off's 29 at 8 spans.
-  std::size_t maximum_patches = 32;
-  std::size_t maximum_control_points = 32 * 343;
-  int maximum_rounds = 12;          ///< epsilon updates
+  /// points and the rounds: at the default grid (4 spans, 343 points per patch) about 1 s
+  /// for the 7 patches of the sphere, 15 s for eight.off's 31, 50 s for 3holes.obj's 52.
+  std::size_t maximum_patches = 128;
+  std::size_t maximum_control_points = 128 * 343;
+  int maximum_rounds = 60;          ///< epsilon updates (per sample density)
   int iterations_per_round = 100;   ///< L-BFGS iterations per round
 };
 
@@ -101,19 +103,21 @@ inline Direction_samples direction_samples(const Knot_vector& kv, const std::vec
 /// the boundary sides and at span joints.
 inline Direction_samples span_samples_with_ends(const Knot_vector& kv, int q)
 {
-  q = std::min(std::max(q, 2), 4);
-  const double a = std::sqrt(0.2);
-  const std::vector<double> gx = q == 2 ? std::vector<double>{-1., 1.} : q == 3 ? std::vector<double>{-1., 0., 1.} : std::vector<double>{-1., -a, a, 1.};
-  const std::vector<double> gw = q == 2 ? std::vector<double>{1., 1.} : q == 3 ? std::vector<double>{1. / 3., 4. / 3., 1. / 3.} : std::vector<double>{1. / 6., 5. / 6., 5. / 6., 1. / 6.};
+  q = std::min(std::max(q, 2), 5);
+  const double a = std::sqrt(0.2), b = std::sqrt(3. / 7.);
+  static const std::vector<double> gx[4] = {{-1., 1.}, {-1., 0., 1.}, {-1., -a, a, 1.}, {-1., -b, 0., b, 1.}};
+  static const std::vector<double> gw[4] = {{1., 1.}, {1. / 3., 4. / 3., 1. / 3.}, {1. / 6., 5. / 6., 5. / 6., 1. / 6.},
+                                            {0.1, 49. / 90., 32. / 45., 49. / 90., 0.1}};
+  const std::vector<double>&x = gx[q - 2], &xw = gw[q - 2];
   std::vector<double> t, w;
-  const std::vector<double> b = kv.breaks();
-  for(std::size_t s = 0; s + 1 < b.size(); ++s) {
-    const double mid = 0.5 * (b[s] + b[s + 1]), half = 0.5 * (b[s + 1] - b[s]);
+  const std::vector<double> br = kv.breaks();
+  for(std::size_t s = 0; s + 1 < br.size(); ++s) {
+    const double mid = 0.5 * (br[s] + br[s + 1]), half = 0.5 * (br[s + 1] - br[s]);
     if(!(half > 0.)) continue;
-    for(std::size_t k = 0; k < gx.size(); ++k) {
-      if(k == 0 && !t.empty()) { w.back() += half * gw[k]; continue; } // shared span end
-      t.push_back(k + 1 == gx.size() ? b[s + 1] : k == 0 ? b[s] : mid + half * gx[k]);
-      w.push_back(half * gw[k]);
+    for(std::size_t k = 0; k < x.size(); ++k) {
+      if(k == 0 && !t.empty()) { w.back() += half * xw[k]; continue; } // shared span end
+      t.push_back(k + 1 == x.size() ? br[s + 1] : k == 0 ? br[s] : mid + half * x[k]);
+      w.push_back(half * xw[k]);
     }
   }
   return direction_samples(kv, t, w);
@@ -388,6 +392,7 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
       // A non-positive sample already rules out a certificate (and the bound is costly there).
       certified_before[c] = sampled[c] > 0. && certified_jacobian_bound(mv.patch(c)).certified_positive;
     }
+  const std::vector<std::array<internal::Direction_samples, 3>> first_samples = samples;
 
   // Per patch: the reference W (mean Jacobian over the unit cube of parameters) and W^-1.
   std::vector<Eigen::Matrix3d> Winv(np, Eigen::Matrix3d::Identity());
@@ -462,10 +467,14 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
     return E;
   };
 
-  r.min_relative_determinant_before = min_det = measure_min(x);
+  // Garanzha et al.'s loop: L-BFGS at a fixed epsilon, then a smaller epsilon from the
+  // energy's decrease and the smallest det, until every sample is positive and the energy
+  // has settled. Epsilon shrinks by about 5% a round while an inverted sample resists, so a
+  // model with a few folded cores needs 20 to 30 rounds (eight.off at grid 16: 29).
   internal::Lbfgs_options lo;
   lo.maximum_iterations = o.iterations_per_round;
-  if(!start.empty()) {
+  auto run_rounds = [&] {
+    if(start.empty()) return;
     eps = min_det > 0. ? 1e-9 : std::max(1e-6, std::min(1., 2. * std::abs(min_det)));
     Eigen::VectorXd g;
     double E_prev = energy(x, g);
@@ -483,20 +492,47 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
       E_prev = energy(x, g); // with the new epsilon
       if(min_det > 0. && settled) break;
     }
-  }
-  r.min_relative_determinant_after = min_det; // measured after the last round (x unchanged since)
-  // Samples are not a certificate: a neighbour that was certified valid may have lost it.
-  bool lost = false;
-  if(min_det > r.min_relative_determinant_before) {
+  };
+  // Per optimised patch: certified det J > 0 with the current points (a non-positive
+  // sample on the first sample grid rules a certificate out, and the bound is costly there).
+  auto certified_with = [&](std::size_t c, const std::vector<Vector3d>& P) {
+    const Tensor_bspline_volume& v = mv.patch(c);
+    const Tensor_bspline_volume w({{v.knot_vector(0), v.knot_vector(1), v.knot_vector(2)}}, P);
+    return internal::sampled_scaled_jacobian(w, first_samples[c]) > 0. && certified_jacobian_bound(w).certified_positive;
+  };
+  auto uncertified_patches = [&] {
     load(x);
-    for(std::size_t c : r.patches) {
-      if(!certified_before[c]) continue;
-      const Tensor_bspline_volume& v = mv.patch(c);
-      lost = lost || !certified_jacobian_bound(Tensor_bspline_volume({{v.knot_vector(0), v.knot_vector(1), v.knot_vector(2)}}, points[c]))
-                        .certified_positive;
-    }
+    std::vector<std::size_t> u;
+    for(std::size_t c : r.patches)
+      if(!certified_with(c, points[c])) u.push_back(c);
+    return u;
+  };
+
+  r.min_relative_determinant_before = min_det = measure_min(x);
+  run_rounds();
+  // Samples are not a certificate: det J can dip below 0 between them (3holes.obj: one core
+  // positive at every sample, negative between). Once every sample is positive, the patches
+  // still not certified get one more Gauss-Lobatto point per span (up to 5) and the rounds
+  // go on from there.
+  std::vector<std::size_t> uncertified = uncertified_patches();
+  for(int q = o.points_per_span + 1; q <= 5 && min_det > 0. && !uncertified.empty(); ++q) {
+    for(std::size_t c : uncertified)
+      for(int d = 0; d < 3; ++d) samples[c][std::size_t(d)] = internal::span_samples_with_ends(mv.patch(c).knot_vector(d), q);
+    min_det = measure_min(x);
+    run_rounds();
+    uncertified = uncertified_patches();
   }
-  if(!(min_det > r.min_relative_determinant_before) || lost) { // no better: keep the construction
+  samples = first_samples; // the figures below compare like with like
+  min_det = measure_min(x);
+  r.min_relative_determinant_after = min_det;
+  // Kept if fewer patches are left uncertified; with as many, only if the smallest sampled
+  // det J rose and no patch certified before lost its certificate.
+  bool lost = false;
+  for(std::size_t c : r.patches)
+    lost = lost || (certified_before[c] && std::find(uncertified.begin(), uncertified.end(), c) != uncertified.end());
+  const std::size_t before = std::size_t(std::count_if(r.patches.begin(), r.patches.end(), [&](std::size_t c) { return !certified_before[c]; }));
+  const bool better = uncertified.size() < before || (uncertified.size() == before && min_det > r.min_relative_determinant_before && !lost);
+  if(!better) { // no better: keep the construction
     for(std::size_t k = 0; k < start.size(); ++k) x.segment<3>(Eigen::Index(3 * k)) = start[k];
     r.min_relative_determinant_after = min_det = r.min_relative_determinant_before;
     r.reverted = true;
