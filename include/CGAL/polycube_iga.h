@@ -208,6 +208,14 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   // volume whose det J nears 0 can cost minutes to certify (3holes.obj), for no valid result.
   const int sweeps = int(option(np, internal_np::grid_relaxation_sweeps, 100));
   if(sweeps < 0) throw Invalid_input_error("invalid_parameter", "grid_relaxation_sweeps must not be negative");
+  // A construction replaces the kept one if it is valid, or leaves fewer patches uncertified
+  // without its boundary moving farther off the mesh.
+  auto better_than_kept = [&](const Layout_volume_result& r) {
+    if(!r.quality_evaluated) return false;
+    if(internal::invalidity_reasons(r, model.maximum_boundary_distance).empty()) return true;
+    const bool closer = r.distance.relative <= std::max(model.maximum_boundary_distance, model.volume.distance.relative);
+    return internal::uncertified_patches(r) < internal::uncertified_patches(model.volume) && closer;
+  };
   std::optional<Layout_volume_result> other; // the construction not chosen, if any
   if(sweeps > 0 && worth_retrying()) {
     Layout_volume_options relaxed = volume_options;
@@ -221,10 +229,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
       model.warnings.push_back("relaxing the surface grids failed: " + e.reason() + ": " + e.what());
     }
     const std::size_t before = internal::uncertified_patches(model.volume), after = internal::uncertified_patches(r);
-    const bool valid = r.quality_evaluated && internal::invalidity_reasons(r, model.maximum_boundary_distance).empty();
-    // Fewer uncertified patches count only if the boundary did not move off the mesh.
-    const bool closer = r.distance.relative <= std::max(model.maximum_boundary_distance, model.volume.distance.relative);
-    if(r.quality_evaluated && (valid || (after < before && closer))) {
+    if(better_than_kept(r)) {
       model.warnings.push_back("the surface grids were relaxed (" + std::to_string(r.relaxation.sweeps) + " sweeps): " +
                                std::to_string(after) + " patches not certified instead of " + std::to_string(before) +
                                " (before untangling)");
@@ -242,9 +247,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     if(worth_retrying() && other) {
       stage("volume untangling, other grids", [&] { untangle_layout_volume(model.layout, *other, volume_options); });
       const std::size_t kept = internal::uncertified_patches(model.volume), alternative = internal::uncertified_patches(*other);
-      const bool valid = internal::invalidity_reasons(*other, model.maximum_boundary_distance).empty();
-      const bool closer = other->distance.relative <= std::max(model.maximum_boundary_distance, model.volume.distance.relative);
-      if(valid || (alternative < kept && closer)) {
+      if(better_than_kept(*other)) {
         model.warnings.push_back("untangled, the " + std::string(other->relaxation.sweeps > 0 ? "relaxed" : "unrelaxed") +
                                  " surface grids leave " + std::to_string(alternative) + " patches uncertified instead of " +
                                  std::to_string(kept) + ": they are used");
