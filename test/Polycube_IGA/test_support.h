@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
@@ -32,15 +33,26 @@ using Mesh = CGAL::Surface_mesh<Point>;
 
 inline std::string data(const std::string& name) { return std::string(POLYCUBE_IGA_TEST_DATA_DIR) + "/" + name; }
 
-/// A fresh temporary directory per test process.
+/// A fresh temporary directory per test process, removed with its files when the process
+/// ends, so that a CTest run (one process per case) leaves nothing behind in /tmp.
 inline std::string temp_path(const std::string& name)
 {
-  static std::string dir = [] {
-    char tmpl[] = "/tmp/polycube_iga_test_XXXXXX";
-    const char* d = mkdtemp(tmpl);
-    return std::string(d ? d : "/tmp");
-  }();
-  return dir + "/" + name;
+  struct Temporary_directory
+  {
+    std::string path;
+    Temporary_directory()
+    {
+      char tmpl[] = "/tmp/polycube_iga_test_XXXXXX";
+      if(const char* d = mkdtemp(tmpl)) path = d;
+    }
+    ~Temporary_directory()
+    {
+      std::error_code ignored;
+      if(!path.empty()) std::filesystem::remove_all(path, ignored);
+    }
+  };
+  static const Temporary_directory dir;
+  return (dir.path.empty() ? std::string("/tmp") : dir.path) + "/" + name;
 }
 
 inline std::string write_text(const std::string& name, const std::string& text)

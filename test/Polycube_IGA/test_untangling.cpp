@@ -10,6 +10,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -17,11 +18,11 @@ namespace PI = CGAL::Polycube_IGA;
 
 namespace {
 
-// Identity map of the box [x0, x0 + 1] x [0, 1]^2: degree 3, 2 spans, control points at the
-// Greville abscissae (5 x 5 x 5).
-PI::Tensor_bspline_volume box(double x0)
+// Identity map of the box [x0, x0 + 1] x [0, 1]^2: degree 3, 2 spans by default, control
+// points at the Greville abscissae (5 x 5 x 5).
+PI::Tensor_bspline_volume box(double x0, int spans = 2)
 {
-  const PI::Knot_vector kv = PI::Knot_vector::uniform(3, 2);
+  const PI::Knot_vector kv = PI::Knot_vector::uniform(3, spans);
   const int n = kv.number_of_basis_functions();
   std::vector<Eigen::Vector3d> P;
   for(int k = 0; k < n; ++k)
@@ -166,10 +167,38 @@ TEST_CASE("untangling cannot move a fixed boundary and says so", "[untangling]")
   mv.add_patch(v);
   add_all_boundaries(mv, 0);
   const PI::Volume_untangling_result r = PI::untangle_volume(mv);
-  // The samples may end positive (4 per span miss the fold's narrow negative part), but no
+  // The samples may end positive (3 to 5 per span miss the fold's narrow negative part), but no
   // certificate: the folded side's parameterization keeps det J <= 0 somewhere.
   CHECK_FALSE(PI::certified_jacobian_bound(mv.patch(0)).certified_positive);
   CHECK(r.min_relative_determinant_after >= r.min_relative_determinant_before);
+  for(int s = 1; s <= 6; ++s) CHECK(boundary_points_equal(mv.patch(0), v, s));
+}
+
+TEST_CASE("untangling takes a patch positive at every sample but folded between them", "[untangling]")
+{
+  // One span: the inner point (1, 1, 1) pushed 1.8 along -x folds the map near that corner,
+  // between the samples: the scaled Jacobian is well above the threshold at the 3 default
+  // Gauss-Lobatto points per span (and at 5), yet det J < 0 somewhere. The certificate, not
+  // the samples, must bring the patch in.
+  PI::Multipatch_volume mv;
+  PI::Tensor_bspline_volume v = box(0., 1);
+  v.control_point({{1, 1, 1}}).x() -= 1.8;
+  std::array<PI::internal::Direction_samples, 3> S;
+  for(int d = 0; d < 3; ++d) S[std::size_t(d)] = PI::internal::span_samples_with_ends(v.knot_vector(d), 3);
+  const PI::Volume_untangling_options o;
+  REQUIRE(o.points_per_span == 3);
+  REQUIRE(PI::internal::sampled_scaled_jacobian(v, S) > o.scaled_jacobian_threshold);
+  REQUIRE(PI::sample_jacobian(v, 5).min_scaled_jacobian > 0.5);
+  const PI::Jacobian_bound folded = PI::certified_jacobian_bound(v);
+  REQUIRE(folded.has_nonpositive_value);
+  REQUIRE(folded.smallest_value_found < 0.);
+  mv.add_patch(v);
+  add_all_boundaries(mv, 0);
+  const PI::Volume_untangling_result r = PI::untangle_volume(mv, o);
+  CHECK(r.patches == std::vector<std::size_t>{0});
+  CHECK_FALSE(r.reverted);
+  CHECK(r.positive_at_samples);
+  CHECK(PI::certified_jacobian_bound(mv.patch(0)).certified_positive);
   for(int s = 1; s <= 6; ++s) CHECK(boundary_points_equal(mv.patch(0), v, s));
 }
 

@@ -39,17 +39,20 @@ namespace Polycube_IGA {
 /// Options of untangle_volume().
 struct Volume_untangling_options
 {
-  /// Gauss-Lobatto points per span and direction, ends included (2..5). With 3, det J
-  /// can be positive at every sample and negative between (double-torus-example.off).
-  int points_per_span = 4;
+  /// Gauss-Lobatto points per span and direction, ends included (2..5). det J can be
+  /// positive at every sample and negative between, so patches the Bernstein bound does not
+  /// certify take part too, and those still uncertified get more points (up to 5) at the
+  /// end. With 4 from the start, every round costs (13/9)^3 = 3 times as much: eight.off,
+  /// double-torus-example.off and 3holes.obj untangle 2 to 3 times slower, and no better.
+  int points_per_span = 3;
   double volume_weight = 0.25; ///< theta: weight of the volume term against the shape term
-  /// Patches with a sampled scaled Jacobian below this (at Gauss points and span corners)
-  /// are optimised, together with their interface neighbours.
+  /// Patches with a sampled scaled Jacobian below this (at Gauss points and span corners),
+  /// or with det J not certified positive, are optimised, with their interface neighbours.
   double scaled_jacobian_threshold = 0.05;
   /// Cost guards: with more patches to optimise than this, or more control points in them
   /// than maximum_control_points, nothing is done (`skipped`). Cost grows with the control
   /// points and the rounds: at the default grid (4 spans, 343 points per patch) about 1 s
-  /// for the 7 patches of the sphere, 15 s for eight.off's 31, 50 s for 3holes.obj's 52.
+  /// for the 7 patches of the sphere, 10 s for eight.off's 31, 18 s for 3holes.obj's 52.
   std::size_t maximum_patches = 128;
   std::size_t maximum_control_points = 128 * 343;
   int maximum_rounds = 60;          ///< epsilon updates (per sample density)
@@ -282,7 +285,8 @@ void for_each_side_point(const Tensor_bspline_volume& v, int s, F&& f)
 /*!
  * \ingroup PkgPolycubeIGARef
  * Moves the free control points of the patches of `mv` whose sampled scaled Jacobian is
- * below `o.scaled_jacobian_threshold`, and of their interface neighbours, to minimise the
+ * below `o.scaled_jacobian_threshold` or whose det J is not certified positive
+ * (certified_jacobian_bound()), and of their interface neighbours, to minimise the
  * regularised distortion energy described at the top of this file. Points on boundary
  * sides, points of other patches and rational patches stay fixed; a point shared by an
  * interface moves on both sides at once, so interfaces stay conforming. Returns what was
@@ -301,13 +305,18 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
   std::vector<std::array<internal::Direction_samples, 3>> samples(np);
   std::vector<bool> active(np, false);
   std::vector<double> sampled(np, 0.); // smallest sampled scaled Jacobian (polynomial patches)
+  std::vector<bool> certified_before(np, false);
   bool any = false;
   for(std::size_t c = 0; c < np; ++c) {
     const Tensor_bspline_volume& v = mv.patch(c);
     for(int d = 0; d < 3; ++d) samples[c][std::size_t(d)] = internal::span_samples_with_ends(v.knot_vector(d), o.points_per_span);
     if(v.is_rational()) continue;
     sampled[c] = internal::sampled_scaled_jacobian(v, samples[c]);
-    if(sampled[c] < o.scaled_jacobian_threshold) active[c] = any = true;
+    // A patch positive at every sample can still fold between them (double-torus-example.off:
+    // next to a corner, where only its neighbours' free points can help), so the certificate
+    // picks patches too. A non-positive sample rules it out (and the bound is costly there).
+    certified_before[c] = sampled[c] > 0. && certified_jacobian_bound(v).certified_positive;
+    if(sampled[c] < o.scaled_jacobian_threshold || !certified_before[c]) active[c] = any = true;
   }
   if(!any) {
     r.positive_at_samples = true;
@@ -385,13 +394,8 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
     unknown[k] = unknown_of_root[root];
   }
   r.free_points = start.size();
-  std::vector<bool> certified_before(np, false);
   for(std::size_t c = 0; c < np; ++c)
-    if(active[c]) {
-      r.patches.push_back(c);
-      // A non-positive sample already rules out a certificate (and the bound is costly there).
-      certified_before[c] = sampled[c] > 0. && certified_jacobian_bound(mv.patch(c)).certified_positive;
-    }
+    if(active[c]) r.patches.push_back(c);
   const std::vector<std::array<internal::Direction_samples, 3>> first_samples = samples;
 
   // Per patch: the reference W (mean Jacobian over the unit cube of parameters) and W^-1.
