@@ -301,6 +301,13 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     model.warnings.push_back("untangling left a negative det J (smallest relative det " +
                              std::to_string(u.min_relative_determinant_after) + ", was " +
                              std::to_string(u.min_relative_determinant_before) + ")");
+  if(!u.skipped && !u.pinned_patches.empty()) {
+    std::string list;
+    for(std::size_t c : u.pinned_patches) list += (list.empty() ? "" : ", ") + std::to_string(c);
+    model.warnings.push_back("volume patches " + list +
+                             ": det J <= 0 where only fixed control points (the fitted boundary sides) set it; "
+                             "untangling cannot reach there");
+  }
   if(model.volume.quality_evaluated && !(model.volume.distance.relative <= model.maximum_boundary_distance))
     model.warnings.push_back(internal::boundary_distance_message(model.layout, model.volume.distance, model.maximum_boundary_distance));
   // Untangling moves inner control points only: a fitted boundary face that turns over keeps

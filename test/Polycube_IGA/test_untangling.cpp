@@ -174,6 +174,29 @@ TEST_CASE("untangling cannot move a fixed boundary and says so", "[untangling]")
   for(int s = 1; s <= 6; ++s) CHECK(boundary_points_equal(mv.patch(0), v, s));
 }
 
+TEST_CASE("untangling spends no rounds on a fold that only fixed points determine", "[untangling]")
+{
+  // Edge point (1, 0, 0) pushed past its neighbour along x: det J < 0 on the edge where sides
+  // v0 and w0 (both boundaries) meet, and all three columns of J there come from those two
+  // sides. No free point moves those samples, so they must not hold the rounds up.
+  PI::Multipatch_volume mv;
+  PI::Tensor_bspline_volume v = box(0.);
+  v.control_point({{1, 0, 0}}).x() += 0.8;
+  REQUIRE(PI::certified_jacobian_bound(v).smallest_value_found < 0.);
+  mv.add_patch(v);
+  add_all_boundaries(mv, 0);
+  const PI::Volume_untangling_options o;
+  const PI::Volume_untangling_result r = PI::untangle_volume(mv, o);
+  CHECK(r.patches == std::vector<std::size_t>{0});
+  CHECK(r.pinned_patches == std::vector<std::size_t>{0});
+  CHECK(r.rounds <= 2);
+  CHECK(r.min_relative_determinant_before < 0.);
+  CHECK(r.min_relative_determinant_after == r.min_relative_determinant_before);
+  CHECK_FALSE(r.positive_at_samples);
+  CHECK_FALSE(PI::certified_jacobian_bound(mv.patch(0)).certified_positive);
+  for(int s = 1; s <= 6; ++s) CHECK(boundary_points_equal(mv.patch(0), v, s));
+}
+
 TEST_CASE("untangling takes a patch positive at every sample but folded between them", "[untangling]")
 {
   // One span: the inner point (1, 1, 1) pushed 1.8 along -x folds the map near that corner,

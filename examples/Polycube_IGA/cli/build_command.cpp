@@ -84,6 +84,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("untangling_reverted", V.untangling.reverted)
       .member("untangling_min_relative_det_before", V.untangling.min_relative_determinant_before)
       .member("untangling_min_relative_det_after", V.untangling.min_relative_determinant_after)
+      .member("untangling_pinned_patches", V.untangling.pinned_patches.size())
       .member("relaxation_attempted", model.relaxation_attempted)
       .member("relaxed_grids", V.relaxation.sweeps > 0)
       .member("relaxation_sweeps", V.relaxation.sweeps)

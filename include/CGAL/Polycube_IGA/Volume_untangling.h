@@ -68,6 +68,9 @@ struct Volume_untangling_result
   /// Smallest det(J W^-1) over the samples of those patches, before and after.
   double min_relative_determinant_before = 0., min_relative_determinant_after = 0.;
   bool positive_at_samples = false; ///< every sample has det J > 0 afterwards
+  /// Optimised patches with det J <= 0 at a sample that only fixed control points (the
+  /// boundary sides, other patches) determine: untangling cannot certify them.
+  std::vector<std::size_t> pinned_patches;
   bool skipped = false; ///< more patches or control points needed it than the options' cost guards allow
   /// The optimised points were discarded: the smallest sampled det J did not improve, or a
   /// patch whose det J was certified positive lost its certificate.
@@ -228,6 +231,34 @@ inline void patch_jacobians_adjoint(const std::array<int, 3>& n, const std::arra
           dP[std::size_t(S[0].first[a] + i) + std::size_t(n[0]) * j + n01 * k] +=
             S[0].value[a * std::size_t(P0) + std::size_t(i)] * A0[from] + S[0].slope[a * std::size_t(P0) + std::size_t(i)] * A1[from];
       }
+}
+
+/// Per sample s = a + q0 (b + q1 c) of the grid S: whether some control point k with
+/// is_free(k) moves J[s], i.e. has a non-zero coefficient in one of its columns. The others'
+/// det J is set by the fixed points alone (two boundary sides meeting at an edge fix all
+/// three columns there), and no untangling can change it.
+template <class IsFree>
+std::vector<bool> movable_samples(const std::array<int, 3>& n, const std::array<Direction_samples, 3>& S, IsFree&& is_free)
+{
+  const auto [q0, q1, q2, P0, P1, P2, n1, n2, n01] = grid_sizes(n, S);
+  std::vector<bool> movable(q0 * q1 * q2, false);
+  for(std::size_t c = 0; c < q2; ++c)
+    for(std::size_t b = 0; b < q1; ++b)
+      for(std::size_t a = 0; a < q0; ++a) {
+        bool m = false;
+        for(int k = 0; k < P2 && !m; ++k)
+          for(int j = 0; j < P1 && !m; ++j)
+            for(int i = 0; i < P0 && !m; ++i) {
+              const std::size_t ia = a * std::size_t(P0) + std::size_t(i), jb = b * std::size_t(P1) + std::size_t(j),
+                                kc = c * std::size_t(P2) + std::size_t(k);
+              const double Nu = S[0].value[ia], Du = S[0].slope[ia], Nv = S[1].value[jb], Dv = S[1].slope[jb],
+                           Nw = S[2].value[kc], Dw = S[2].slope[kc];
+              if(Du * Nv * Nw == 0. && Nu * Dv * Nw == 0. && Nu * Nv * Dw == 0.) continue;
+              m = is_free(std::size_t(S[0].first[a] + i) + std::size_t(n[0]) * (std::size_t(S[1].first[b] + j) + n1 * std::size_t(S[2].first[c] + k)));
+            }
+        movable[a + q0 * (b + q1 * c)] = m;
+      }
+  return movable;
 }
 
 /// Weight of sample s = a + q0 (b + q1 c).
@@ -426,16 +457,43 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
         if(u >= 0) points[c][k] = y.segment<3>(Eigen::Index(3 * u));
       }
   };
+  // Samples whose det J the free points cannot change (set by the fixed boundary alone) are
+  // left out of the smallest det that drives epsilon and the stopping test: a folded
+  // boundary edge would otherwise hold epsilon up for all the rounds in vain
+  // (double-torus-3-holes.off: -13.0 for 60 rounds, 10 minutes).
+  std::vector<std::vector<bool>> movable(np);
+  auto update_movable = [&](std::size_t c) {
+    movable[c] = internal::movable_samples(mv.patch(c).control_net_size(), samples[c],
+                                           [&](std::size_t k) { return unknown[offset[c] + k] >= 0; });
+  };
+  for(std::size_t c : r.patches) update_movable(c);
   double min_det = 0.;
-  auto measure_min = [&](const Eigen::VectorXd& y) {
+  auto measure_min = [&](const Eigen::VectorXd& y, bool movable_only) {
     load(y);
     double m = std::numeric_limits<double>::infinity();
     std::vector<Eigen::Matrix3d> J;
     for(std::size_t c : r.patches) {
       internal::patch_jacobians(mv.patch(c).control_net_size(), samples[c], points[c], J);
-      for(const Eigen::Matrix3d& M : J) m = std::min(m, (M * Winv[c]).determinant());
+      for(std::size_t s = 0; s < J.size(); ++s)
+        if(!movable_only || movable[c][s]) m = std::min(m, (J[s] * Winv[c]).determinant());
     }
     return m;
+  };
+  // Patches with a non-positive det J at a sample no free point moves: no round can certify
+  // them, so they get no denser samples either.
+  auto pinned_patches = [&] {
+    load(x);
+    std::vector<std::size_t> u;
+    std::vector<Eigen::Matrix3d> J;
+    for(std::size_t c : r.patches) {
+      internal::patch_jacobians(mv.patch(c).control_net_size(), samples[c], points[c], J);
+      for(std::size_t s = 0; s < J.size(); ++s)
+        if(!movable[c][s] && !(J[s].determinant() > 0.)) {
+          u.push_back(c);
+          break;
+        }
+    }
+    return u;
   };
   const double theta = o.volume_weight;
   double eps = 1.;
@@ -486,7 +544,7 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
       const internal::Lbfgs_result lr = internal::lbfgs_minimize(energy, x, lo);
       ++r.rounds;
       r.iterations += lr.iterations;
-      min_det = measure_min(x);
+      min_det = measure_min(x, true);
       const double E = lr.value;
       const double sigma = std::max(1. - E / E_prev, 0.1);
       const double chi_min = internal::regularised_determinant(min_det, eps);
@@ -512,36 +570,48 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
     return u;
   };
 
-  r.min_relative_determinant_before = min_det = measure_min(x);
+  r.min_relative_determinant_before = measure_min(x, false);
+  const std::vector<std::size_t> pinned = pinned_patches();
+  r.pinned_patches = pinned;
+  const double movable_before = min_det = measure_min(x, true);
   run_rounds();
   // Samples are not a certificate: det J can dip below 0 between them (3holes.obj: one core
   // positive at every sample, negative between). Once every sample is positive, the patches
   // still not certified get one more Gauss-Lobatto point per span (up to 5) and the rounds
   // go on from there.
   std::vector<std::size_t> uncertified = uncertified_patches();
-  for(int q = o.points_per_span + 1; q <= 5 && min_det > 0. && !uncertified.empty(); ++q) {
+  auto densify = [&] {
+    std::vector<std::size_t> d;
     for(std::size_t c : uncertified)
+      if(std::find(pinned.begin(), pinned.end(), c) == pinned.end()) d.push_back(c);
+    return d;
+  };
+  for(int q = o.points_per_span + 1; q <= 5 && min_det > 0. && !densify().empty(); ++q) {
+    for(std::size_t c : densify()) {
       for(int d = 0; d < 3; ++d) samples[c][std::size_t(d)] = internal::span_samples_with_ends(mv.patch(c).knot_vector(d), q);
-    min_det = measure_min(x);
+      update_movable(c);
+    }
+    min_det = measure_min(x, true);
     run_rounds();
     uncertified = uncertified_patches();
   }
   samples = first_samples; // the figures below compare like with like
-  min_det = measure_min(x);
-  r.min_relative_determinant_after = min_det;
-  // Kept if fewer patches are left uncertified; with as many, only if the smallest sampled
-  // det J rose and no patch certified before lost its certificate.
+  for(std::size_t c : r.patches) update_movable(c);
+  r.min_relative_determinant_after = measure_min(x, false);
+  min_det = measure_min(x, true);
+  // Kept if fewer patches are left uncertified; with as many, only if the smallest det J
+  // the free points can move rose and no patch certified before lost its certificate.
   bool lost = false;
   for(std::size_t c : r.patches)
     lost = lost || (certified_before[c] && std::find(uncertified.begin(), uncertified.end(), c) != uncertified.end());
   const std::size_t before = std::size_t(std::count_if(r.patches.begin(), r.patches.end(), [&](std::size_t c) { return !certified_before[c]; }));
-  const bool better = uncertified.size() < before || (uncertified.size() == before && min_det > r.min_relative_determinant_before && !lost);
+  const bool better = uncertified.size() < before || (uncertified.size() == before && min_det > movable_before && !lost);
   if(!better) { // no better: keep the construction
     for(std::size_t k = 0; k < start.size(); ++k) x.segment<3>(Eigen::Index(3 * k)) = start[k];
-    r.min_relative_determinant_after = min_det = r.min_relative_determinant_before;
+    r.min_relative_determinant_after = r.min_relative_determinant_before;
     r.reverted = true;
   }
-  r.positive_at_samples = min_det > 0.;
+  r.positive_at_samples = r.min_relative_determinant_after > 0.;
   load(x);
   for(std::size_t c : r.patches) mv.patch(c).control_points() = points[c];
   return r;
