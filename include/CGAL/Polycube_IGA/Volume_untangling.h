@@ -468,32 +468,30 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
   };
   for(std::size_t c : r.patches) update_movable(c);
   double min_det = 0.;
-  auto measure_min = [&](const Eigen::VectorXd& y, bool movable_only) {
+  // One pass over the samples' Jacobians: the smallest det(J W^-1) over all samples and over
+  // the movable ones, and (if asked) the patches with a non-positive det at a sample no free
+  // point moves: no round can certify those, so they get no denser samples either. det W > 0,
+  // so det(J W^-1) and det J share their sign.
+  struct Smallest
+  {
+    double all, movable;
+  };
+  auto measure = [&](const Eigen::VectorXd& y, std::vector<std::size_t>* pinned = nullptr) {
     load(y);
-    double m = std::numeric_limits<double>::infinity();
+    Smallest m{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
     std::vector<Eigen::Matrix3d> J;
     for(std::size_t c : r.patches) {
       internal::patch_jacobians(mv.patch(c).control_net_size(), samples[c], points[c], J);
-      for(std::size_t s = 0; s < J.size(); ++s)
-        if(!movable_only || movable[c][s]) m = std::min(m, (J[s] * Winv[c]).determinant());
+      bool pin = false;
+      for(std::size_t s = 0; s < J.size(); ++s) {
+        const double D = (J[s] * Winv[c]).determinant();
+        m.all = std::min(m.all, D);
+        if(movable[c][s]) m.movable = std::min(m.movable, D);
+        else pin = pin || !(D > 0.);
+      }
+      if(pin && pinned) pinned->push_back(c);
     }
     return m;
-  };
-  // Patches with a non-positive det J at a sample no free point moves: no round can certify
-  // them, so they get no denser samples either.
-  auto pinned_patches = [&] {
-    load(x);
-    std::vector<std::size_t> u;
-    std::vector<Eigen::Matrix3d> J;
-    for(std::size_t c : r.patches) {
-      internal::patch_jacobians(mv.patch(c).control_net_size(), samples[c], points[c], J);
-      for(std::size_t s = 0; s < J.size(); ++s)
-        if(!movable[c][s] && !(J[s].determinant() > 0.)) {
-          u.push_back(c);
-          break;
-        }
-    }
-    return u;
   };
   const double theta = o.volume_weight;
   double eps = 1.;
@@ -544,7 +542,7 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
       const internal::Lbfgs_result lr = internal::lbfgs_minimize(energy, x, lo);
       ++r.rounds;
       r.iterations += lr.iterations;
-      min_det = measure_min(x, true);
+      min_det = measure(x).movable;
       const double E = lr.value;
       const double sigma = std::max(1. - E / E_prev, 0.1);
       const double chi_min = internal::regularised_determinant(min_det, eps);
@@ -570,42 +568,40 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
     return u;
   };
 
-  r.min_relative_determinant_before = measure_min(x, false);
-  const std::vector<std::size_t> pinned = pinned_patches();
-  r.pinned_patches = pinned;
-  const double movable_before = min_det = measure_min(x, true);
+  const Smallest before_rounds = measure(x, &r.pinned_patches);
+  r.min_relative_determinant_before = before_rounds.all;
+  min_det = before_rounds.movable;
   run_rounds();
   // Samples are not a certificate: det J can dip below 0 between them (3holes.obj: one core
   // positive at every sample, negative between). Once every sample is positive, the patches
   // still not certified get one more Gauss-Lobatto point per span (up to 5) and the rounds
   // go on from there.
   std::vector<std::size_t> uncertified = uncertified_patches();
-  auto densify = [&] {
-    std::vector<std::size_t> d;
+  for(int q = o.points_per_span + 1; q <= 5 && min_det > 0.; ++q) {
+    std::vector<std::size_t> denser;
     for(std::size_t c : uncertified)
-      if(std::find(pinned.begin(), pinned.end(), c) == pinned.end()) d.push_back(c);
-    return d;
-  };
-  for(int q = o.points_per_span + 1; q <= 5 && min_det > 0. && !densify().empty(); ++q) {
-    for(std::size_t c : densify()) {
+      if(std::find(r.pinned_patches.begin(), r.pinned_patches.end(), c) == r.pinned_patches.end()) denser.push_back(c);
+    if(denser.empty()) break;
+    for(std::size_t c : denser) {
       for(int d = 0; d < 3; ++d) samples[c][std::size_t(d)] = internal::span_samples_with_ends(mv.patch(c).knot_vector(d), q);
       update_movable(c);
     }
-    min_det = measure_min(x, true);
+    min_det = measure(x).movable;
     run_rounds();
     uncertified = uncertified_patches();
   }
   samples = first_samples; // the figures below compare like with like
   for(std::size_t c : r.patches) update_movable(c);
-  r.min_relative_determinant_after = measure_min(x, false);
-  min_det = measure_min(x, true);
+  const Smallest after_rounds = measure(x);
+  r.min_relative_determinant_after = after_rounds.all;
+  min_det = after_rounds.movable;
   // Kept if fewer patches are left uncertified; with as many, only if the smallest det J
   // the free points can move rose and no patch certified before lost its certificate.
   bool lost = false;
   for(std::size_t c : r.patches)
     lost = lost || (certified_before[c] && std::find(uncertified.begin(), uncertified.end(), c) != uncertified.end());
   const std::size_t before = std::size_t(std::count_if(r.patches.begin(), r.patches.end(), [&](std::size_t c) { return !certified_before[c]; }));
-  const bool better = uncertified.size() < before || (uncertified.size() == before && min_det > movable_before && !lost);
+  const bool better = uncertified.size() < before || (uncertified.size() == before && min_det > before_rounds.movable && !lost);
   if(!better) { // no better: keep the construction
     for(std::size_t k = 0; k < start.size(); ++k) x.segment<3>(Eigen::Index(3 * k)) = start[k];
     r.min_relative_determinant_after = r.min_relative_determinant_before;
