@@ -107,6 +107,33 @@ TEST_CASE("untangling repairs a folded box and keeps its boundary exactly", "[un
   }
 }
 
+TEST_CASE("a larger floor of the energy decrease shrinks epsilon faster and untangles in fewer rounds", "[untangling]")
+{
+  // A fold on the free side w = 1 of a 4-span box: the pushed points pass the next planes.
+  // Garanzha et al.'s floor of 0.1 shrinks epsilon by about 5% a round while the fold
+  // resists; the default 0.5 by about a third (6 rounds against 3). Both must certify the
+  // box; the default in fewer rounds.
+  PI::Tensor_bspline_volume v = box(0., 4);
+  fold(v, 1, 1.4, true);
+  auto untangled = [&](double floor, PI::Volume_untangling_result& r) {
+    PI::Multipatch_volume mv;
+    mv.add_patch(v);
+    add_all_boundaries(mv, 0, {6});
+    PI::Volume_untangling_options o;
+    o.minimum_decrease = floor;
+    r = PI::untangle_volume(mv, o);
+    return mv;
+  };
+  PI::Volume_untangling_result slow, fast;
+  const PI::Multipatch_volume a = untangled(0.1, slow), b = untangled(PI::Volume_untangling_options().minimum_decrease, fast);
+  REQUIRE(slow.min_relative_determinant_before < 0.);
+  INFO("rounds " << slow.rounds << " (0.1) against " << fast.rounds << " (default)");
+  CHECK(PI::certified_jacobian_bound(a.patch(0)).certified_positive);
+  CHECK(PI::certified_jacobian_bound(b.patch(0)).certified_positive);
+  CHECK(fast.rounds < slow.rounds);
+  for(int s = 1; s <= 5; ++s) CHECK(boundary_points_equal(b.patch(0), v, s));
+}
+
 TEST_CASE("untangling moves a shared interface point on both sides and keeps the interface conforming", "[untangling]")
 {
   // Two boxes glued along x = 1 (side u1 of patch 0, side u0 of patch 1); the fold sits next
