@@ -180,7 +180,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   volume_defaults.untangle = true;
   Layout_volume_options volume_options = layout_volume_options(np, volume_defaults);
   volume_options.relaxation = Grid_relaxation_options::none(); // the second attempt's (below)
-  // Untangling costs more than building (eight.off: 10 s against 1 s) and cannot repair
+  // Untangling costs more than building (eight.off: 3 s against 1 s) and cannot repair
   // folded surface grids, so the first two constructions are compared untangled-free and
   // the better one is untangled (below).
   const bool untangle = volume_options.untangle;
