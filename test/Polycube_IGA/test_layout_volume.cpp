@@ -745,6 +745,35 @@ TEST_CASE("layout volume is deterministic", "[layout_volume]")
   CHECK(xa.str() == xb.str());
 }
 
+TEST_CASE("untangling a measured layout volume gives the figures of untangling while building", "[layout_volume][untangling]")
+{
+  // untangle_layout_volume() reuses what layout_volume() measured (certificates for the
+  // untangler's choice, figures of patches it did not move, the boundary distance, which
+  // untangling cannot change); the result must be that of layout_volume() untangling itself.
+  const Layout L = PI::Cuboid_decomposition<Mesh>()(load(data("sphere.off")));
+  PI::Layout_volume_options o = small_options(16);
+  o.boundary_layer = 0.25;
+  o.maximum_cuboid_aspect = 2.;
+  o.untangle = false;
+  PI::Layout_volume_result later = PI::layout_volume(L, o);
+  REQUIRE(later.quality_evaluated);
+  REQUIRE_FALSE(later.quality.overall_certified.certified_positive); // the padded cube folds (test_build)
+  PI::untangle_layout_volume(L, later, o);
+  o.untangle = true;
+  const PI::Layout_volume_result at_once = PI::layout_volume(L, o);
+  REQUIRE(later.volume.number_of_patches() == at_once.volume.number_of_patches());
+  CHECK_FALSE(later.untangling.patches.empty());
+  CHECK(later.untangling.patches == at_once.untangling.patches);
+  for(std::size_t p = 0; p < later.volume.number_of_patches(); ++p) {
+    CHECK(later.volume.patch(p).control_points() == at_once.volume.patch(p).control_points());
+    CHECK(later.quality.certified[p].lower_bound == at_once.quality.certified[p].lower_bound);
+    CHECK(later.quality.sampled[p].min_scaled_jacobian == at_once.quality.sampled[p].min_scaled_jacobian);
+  }
+  CHECK(later.distance.hausdorff == at_once.distance.hausdorff);
+  CHECK(later.distance.folded_sides.size() == at_once.distance.folded_sides.size());
+  CHECK(later.quality.interfaces.max_gap == at_once.quality.interfaces.max_gap);
+}
+
 TEST_CASE("layout volume named parameters match the options struct", "[layout_volume]")
 {
   const Layout L = box_chain_layout(1, 3, true);

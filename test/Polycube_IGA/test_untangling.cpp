@@ -171,6 +171,33 @@ TEST_CASE("untangling moves a shared interface point on both sides and keeps the
   for(int s : {2, 3, 4, 5, 6}) CHECK(boundary_points_equal(mv.patch(1), b, s));
 }
 
+TEST_CASE("quality measured again only where patches changed equals a fresh evaluation", "[untangling][quality]")
+{
+  // Three separate boxes; the middle one is then folded. evaluate_quality() told that only it
+  // changed copies the others' figures and must agree with measuring everything again.
+  PI::Multipatch_volume mv;
+  for(int p = 0; p < 3; ++p) mv.add_patch(box(2. * p));
+  const PI::Multipatch_quality before = PI::evaluate_quality(mv);
+  REQUIRE(before.overall_certified.certified_positive);
+  fold(mv.patch(1), 1, 0.9);
+  const PI::Multipatch_quality fresh = PI::evaluate_quality(mv);
+  const PI::Multipatch_quality reused = PI::evaluate_quality(mv, 5, PI::Jacobian_bound_options(), &before, {false, true, false});
+  CHECK_FALSE(fresh.certified[1].certified_positive);
+  for(std::size_t p = 0; p < 3; ++p) {
+    CHECK(reused.certified[p].lower_bound == fresh.certified[p].lower_bound);
+    CHECK(reused.certified[p].certified_positive == fresh.certified[p].certified_positive);
+    CHECK(reused.sampled[p].min_determinant == fresh.sampled[p].min_determinant);
+    CHECK(reused.sampled[p].mean_scaled_jacobian == fresh.sampled[p].mean_scaled_jacobian);
+  }
+  CHECK(reused.overall_certified.lower_bound == fresh.overall_certified.lower_bound);
+  CHECK(reused.overall_sampled.min_scaled_jacobian == fresh.overall_sampled.min_scaled_jacobian);
+  // Known figures with a wrong patch count are ignored, not misread.
+  PI::Multipatch_quality short_known = before;
+  short_known.certified.pop_back();
+  CHECK(PI::evaluate_quality(mv, 5, PI::Jacobian_bound_options(), &short_known, {false, false, false}).certified[1].lower_bound ==
+        fresh.certified[1].lower_bound);
+}
+
 TEST_CASE("untangling leaves a valid model untouched", "[untangling]")
 {
   PI::Multipatch_volume mv;

@@ -104,6 +104,10 @@ struct Layout_volume_result
   bool quality_evaluated = false;
   Multipatch_quality quality;  ///< sampled and certified Jacobians per patch, interface conformity
   Boundary_distance distance;  ///< two-sided Hausdorff distance, boundary sides on SURFACE patches vs the mesh
+  /// The settings `quality` and `distance` were measured with: untangle_layout_volume() with
+  /// the same ones measures again only the patches the untangling moved.
+  int quality_samples_per_span = 0, distance_samples_per_direction = 0;
+  Jacobian_bound_options quality_bound;
 
   double sampling_seconds = 0., fitting_seconds = 0., untangling_seconds = 0., quality_seconds = 0.;
 };
@@ -221,15 +225,34 @@ void untangle_and_evaluate(const TriangleMesh& mesh, Layout_volume_result& r, co
 {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
-  if(o.untangle) r.untangling = untangle_volume(r.volume, o.untangling);
+  // Figures measured before on this very volume with these settings (an untangling after a
+  // first evaluation, as build_trivariate_model() does) serve again where nothing moved.
+  const std::size_t np = r.volume.number_of_patches();
+  const bool measured = r.quality_evaluated && r.quality.certified.size() == np && r.quality.sampled.size() == np &&
+                        r.quality_samples_per_span == o.quality_samples_per_span &&
+                        r.distance_samples_per_direction == o.distance_samples_per_direction &&
+                        r.quality_bound.maximum_depth == o.bound.maximum_depth && r.quality_bound.maximum_boxes == o.bound.maximum_boxes;
+  const Jacobian_bound_options default_bound;
+  const bool default_certificates = measured && o.bound.maximum_depth == default_bound.maximum_depth &&
+                                    o.bound.maximum_boxes == default_bound.maximum_boxes;
+  if(o.untangle) r.untangling = untangle_volume(r.volume, o.untangling, default_certificates ? &r.quality.certified : nullptr);
   const auto t1 = Clock::now();
   r.untangling_seconds = std::chrono::duration<double>(t1 - t0).count();
   if(!o.evaluate_quality) return;
-  r.quality = evaluate_quality(r.volume, o.quality_samples_per_span, o.bound);
-  Multipatch_volume on_surface; // the same patches, boundary = sides on SURFACE patches
-  for(const auto& v : r.volume.patches()) on_surface.add_patch(v);
-  for(const Patch_side& b : r.surface_sides) on_surface.add_boundary(b);
-  if(!on_surface.boundaries().empty()) r.distance = boundary_hausdorff_distance(on_surface, mesh, o.distance_samples_per_direction);
+  std::vector<bool> moved(np, !measured);
+  if(measured && o.untangle && !r.untangling.skipped && !r.untangling.reverted)
+    for(std::size_t c : r.untangling.patches) moved[c] = true;
+  r.quality = evaluate_quality(r.volume, o.quality_samples_per_span, o.bound, measured ? &r.quality : nullptr, moved);
+  // Untangling moves no control point of a boundary side: a distance measured stands.
+  if(!measured) {
+    Multipatch_volume on_surface; // the same patches, boundary = sides on SURFACE patches
+    for(const auto& v : r.volume.patches()) on_surface.add_patch(v);
+    for(const Patch_side& b : r.surface_sides) on_surface.add_boundary(b);
+    if(!on_surface.boundaries().empty()) r.distance = boundary_hausdorff_distance(on_surface, mesh, o.distance_samples_per_direction);
+  }
+  r.quality_samples_per_span = o.quality_samples_per_span;
+  r.distance_samples_per_direction = o.distance_samples_per_direction;
+  r.quality_bound = o.bound;
   r.quality_evaluated = true;
   r.quality_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
 }
@@ -428,7 +451,10 @@ Layout_volume_result layout_volume(const Polycube_layout<Point_3>& layout, const
 /// Untangles the volume of `r`, built by layout_volume() from `layout` with `untangle` off,
 /// with `o.untangling` (Volume_untangling.h), and evaluates its quality again: what
 /// layout_volume() with `o.untangle` would have given, for a caller that first compares
-/// constructions (build_trivariate_model() untangles only the better of two).
+/// constructions (build_trivariate_model() untangles only the better of two). Figures that
+/// layout_volume() measured with the same settings are reused where untangling moved nothing
+/// (certificates, sampled Jacobians, the boundary distance), so `r.volume` must be as
+/// layout_volume() left it.
 template <class Point_3>
 void untangle_layout_volume(const Polycube_layout<Point_3>& layout, Layout_volume_result& r, const Layout_volume_options& o)
 {

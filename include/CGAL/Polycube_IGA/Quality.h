@@ -251,14 +251,21 @@ struct Multipatch_quality
   Interface_conformity interfaces;
 };
 
+/// Quality of `mp`. With `known` (measured on `mp` with the same settings before some of its
+/// patches changed), the per-patch figures of the patches not flagged in `changed` are
+/// copied from it instead of measured again.
 inline Multipatch_quality evaluate_quality(const Multipatch_volume& mp, int samples_per_span = 5,
-                                           const Jacobian_bound_options& o = Jacobian_bound_options())
+                                           const Jacobian_bound_options& o = Jacobian_bound_options(),
+                                           const Multipatch_quality* known = nullptr, const std::vector<bool>& changed = {})
 {
   Multipatch_quality q;
   double sum = 0.;
-  for(const auto& v : mp.patches()) {
-    q.sampled.push_back(sample_jacobian(v, samples_per_span));
-    q.certified.push_back(certified_jacobian_bound(v, o));
+  const std::size_t np = mp.number_of_patches();
+  const bool reuse = known && known->sampled.size() == np && known->certified.size() == np && changed.size() == np;
+  for(std::size_t c = 0; c < np; ++c) {
+    const Tensor_bspline_volume& v = mp.patch(c);
+    q.sampled.push_back(reuse && !changed[c] ? known->sampled[c] : sample_jacobian(v, samples_per_span));
+    q.certified.push_back(reuse && !changed[c] ? known->certified[c] : certified_jacobian_bound(v, o));
     const Jacobian_sampling& s = q.sampled.back();
     Jacobian_sampling& a = q.overall_sampled;
     a.min_determinant = std::min(a.min_determinant, s.min_determinant);

@@ -334,10 +334,13 @@ void for_each_side_point(const Tensor_bspline_volume& v, int s, F&& f)
  * `o.maximum_patches` patches or `o.maximum_control_points` control points would be
  * optimised (`skipped`), or (`reverted`) if the smallest
  * sampled det J does not improve or a patch certified valid before is not afterwards.
+ * `certified`, if given, holds certified_jacobian_bound() of every patch of `mv` with
+ * default options (from evaluate_quality()), which is then not computed again.
  * Deterministic.
  */
 inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
-                                                const Volume_untangling_options& o = Volume_untangling_options())
+                                                const Volume_untangling_options& o = Volume_untangling_options(),
+                                                const std::vector<Jacobian_bound>* certified = nullptr)
 {
   using Eigen::Vector3d;
   Volume_untangling_result r;
@@ -355,7 +358,8 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
     // A patch positive at every sample can still fold between them (double-torus-example.off:
     // next to a corner, where only its neighbours' free points can help), so the certificate
     // picks patches too. A non-positive sample rules it out (and the bound is costly there).
-    certified_before[c] = sampled[c] > 0. && certified_jacobian_bound(v).certified_positive;
+    certified_before[c] = sampled[c] > 0. &&
+                          (certified && certified->size() == np ? (*certified)[c].certified_positive : certified_jacobian_bound(v).certified_positive);
     if(sampled[c] < o.scaled_jacobian_threshold || !certified_before[c]) active[c] = any = true;
   }
   if(!any) {
