@@ -48,6 +48,8 @@
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
 
 #include <Eigen/Dense>
 
@@ -56,6 +58,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -109,21 +112,46 @@ inline Eigen::Vector3d grid_normal(const Point_grid& g, int i, int j)
   return l > 0. ? Eigen::Vector3d(n / l) : Eigen::Vector3d::Zero();
 }
 
-/// Ray casts and closest faces on the surface mesh, for the inner nodes (one AABB tree).
+/// Ray casts and closest faces on the surface mesh, for the inner nodes (one AABB tree), and
+/// closest points for the grid relaxation (Grid_relaxation.h) on a second tree, built unless
+/// `closest_points` is false.
 template <class Mesh>
 class Mesh_probe
 {
   using Point = typename boost::property_traits<typename boost::property_map<Mesh, CGAL::vertex_point_t>::const_type>::value_type;
   using K = typename CGAL::Kernel_traits<Point>::Kernel;
   using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>>;
+  // Closest points are constructions, in doubles with either kernel. Their search's pruning
+  // test (sphere against box) is a filtered exact predicate in K and fails its filter for
+  // the tiny spheres of a hinted search, which a relaxation makes a million of; with plain
+  // doubles a box within rounding of the sphere may be skipped, which can only lose a face
+  // as close as the best one to within rounding.
+  using Fast_kernel = CGAL::Simple_cartesian<double>;
+  using Fast_mesh = CGAL::Surface_mesh<Fast_kernel::Point_3>;
+  using Fast_tree = CGAL::AABB_tree<CGAL::AABB_traits<Fast_kernel, CGAL::AABB_face_graph_triangle_primitive<Fast_mesh>>>;
 
 public:
-  explicit Mesh_probe(const Mesh& mesh) : mesh_(mesh), tree_(faces(mesh).first, faces(mesh).second, mesh)
+  explicit Mesh_probe(const Mesh& mesh, bool closest_points = true)
+    : mesh_(mesh), tree_(faces(mesh).first, faces(mesh).second, mesh)
   {
     if(faces(mesh).empty()) return;
     const CGAL::Bbox_3 b = tree_.bbox();
     offset_ = 1e-7 * std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) + CGAL::square(b.zmax() - b.zmin()));
     tree_.accelerate_distance_queries();
+    if(!closest_points) return;
+    // A copy with the same vertex and face indices (the mesh has no garbage).
+    for(auto v : vertices(mesh)) {
+      const Point& q = get(CGAL::vertex_point, mesh, v);
+      fast_mesh_.add_vertex(Fast_kernel::Point_3(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z())));
+    }
+    for(auto f : faces(mesh)) {
+      std::vector<typename Fast_mesh::Vertex_index> vs;
+      for(auto v : vertices_around_face(halfedge(f, mesh), mesh)) vs.push_back(typename Fast_mesh::Vertex_index(std::uint32_t(std::size_t(v))));
+      if(fast_mesh_.add_face(vs) == Fast_mesh::null_face()) throw Internal_error("probe_copy_failed", "the surface mesh could not be copied for closest points");
+    }
+    fast_tree_ = std::make_unique<Fast_tree>(faces(fast_mesh_).first, faces(fast_mesh_).second, fast_mesh_);
+    fast_tree_->accelerate_distance_queries();
+    for(auto f : faces(mesh)) normals_.push_back(face_normal(f)); // each answer needs its face's
   }
 
   /// The distance along -normal from `p` to the first face (a ray cast from just below `p`,
@@ -146,7 +174,7 @@ public:
     return face_normal(tree_.closest_point_and_primitive(Point(p.x(), p.y(), p.z())).second);
   }
 
-  using Hint = typename Tree::Point_and_primitive_id;
+  using Hint = typename Fast_tree::Point_and_primitive_id;
   /// A point of the mesh, the unit normal of its face, and itself as a hint for the next query.
   struct Surface_point
   {
@@ -154,23 +182,29 @@ public:
     Hint hint;
   };
 
-  /// The point of the mesh closest to `p` (the mesh must have faces).
-  Surface_point closest_point(const Eigen::Vector3d& p) const { return surface_point(tree_.closest_point_and_primitive(as_point(p))); }
+  /// The point of the mesh closest to `p` (the mesh must have faces; the probe built with
+  /// `closest_points`).
+  Surface_point closest_point(const Eigen::Vector3d& p) const
+  {
+    CGAL_precondition(fast_tree_ != nullptr);
+    return surface_point(fast_tree_->closest_point_and_primitive(as_fast_point(p)));
+  }
 
   /// Same, searched from `hint` (a point of the mesh near the answer, e.g. the previous answer
   /// for a point that moved a little): far fewer boxes are visited.
   Surface_point closest_point(const Eigen::Vector3d& p, const Hint& hint) const
   {
-    return surface_point(tree_.closest_point_and_primitive(as_point(p), hint));
+    CGAL_precondition(fast_tree_ != nullptr);
+    return surface_point(fast_tree_->closest_point_and_primitive(as_fast_point(p), hint));
   }
 
 private:
-  static Point as_point(const Eigen::Vector3d& p) { return Point(p.x(), p.y(), p.z()); }
+  static Fast_kernel::Point_3 as_fast_point(const Eigen::Vector3d& p) { return Fast_kernel::Point_3(p.x(), p.y(), p.z()); }
 
   Surface_point surface_point(const Hint& h) const
   {
-    const Point& q = h.first;
-    return {Eigen::Vector3d(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z())), face_normal(h.second), h};
+    const auto& q = h.first;
+    return {Eigen::Vector3d(q.x(), q.y(), q.z()), normals_[std::size_t(h.second)], h};
   }
 
   template <class Face>
@@ -190,6 +224,9 @@ private:
   const Mesh& mesh_;
   Tree tree_;
   double offset_ = 0.;
+  Fast_mesh fast_mesh_;
+  std::unique_ptr<Fast_tree> fast_tree_;
+  std::vector<Eigen::Vector3d> normals_; ///< per face, with fast_tree_
 };
 
 /// A corner of a cuboid of a padded layout at an inner node: its three edge arcs.
@@ -336,7 +373,7 @@ template <class Mesh>
 std::vector<double> inward_thickness(const Mesh& mesh, const std::vector<Eigen::Vector3d>& points,
                                      const std::vector<Eigen::Vector3d>& normals)
 {
-  const Mesh_probe<Mesh> probe(mesh);
+  const Mesh_probe<Mesh> probe(mesh, false); // rays only
   std::vector<double> out(points.size());
   for(std::size_t i = 0; i < points.size(); ++i) out[i] = probe.thickness(points[i], normals[i]);
   return out;
@@ -405,7 +442,7 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
   // A patch corner whose angle is reflex turns its grid's corner normal over; where that
   // cancels the others (a chain node of joint.off, two of four normals reversed) the node
   // takes the normal of the mesh face it lies on.
-  const internal::Mesh_probe<typename Layout::Mesh> probe(layout.mesh);
+  const internal::Mesh_probe<typename Layout::Mesh> probe(layout.mesh, false); // rays and face normals only
   for(std::size_t n = 0; n < nn; ++n)
     if(surface_corners[n] > 0 && node_normal[n].norm() < 0.25 * surface_corners[n] && depth[n] < infinity)
       node_normal[n] = probe.closest_face_normal(outer[n]);
