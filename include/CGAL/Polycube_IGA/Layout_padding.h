@@ -58,6 +58,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -139,19 +140,20 @@ public:
     offset_ = 1e-7 * std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) + CGAL::square(b.zmax() - b.zmin()));
     tree_.accelerate_distance_queries();
     if(!closest_points) return;
-    // A copy with the same vertex and face indices (the mesh has no garbage).
+    // A copy whose face k is the k-th face of `mesh` (its normal is normals_[k]).
+    std::map<typename boost::graph_traits<Mesh>::vertex_descriptor, typename Fast_mesh::Vertex_index> copy;
     for(auto v : vertices(mesh)) {
       const Point& q = get(CGAL::vertex_point, mesh, v);
-      fast_mesh_.add_vertex(Fast_kernel::Point_3(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z())));
+      copy[v] = fast_mesh_.add_vertex(Fast_kernel::Point_3(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z())));
     }
     for(auto f : faces(mesh)) {
       std::vector<typename Fast_mesh::Vertex_index> vs;
-      for(auto v : vertices_around_face(halfedge(f, mesh), mesh)) vs.push_back(typename Fast_mesh::Vertex_index(std::uint32_t(std::size_t(v))));
+      for(auto v : vertices_around_face(halfedge(f, mesh), mesh)) vs.push_back(copy[v]);
       if(fast_mesh_.add_face(vs) == Fast_mesh::null_face()) throw Internal_error("probe_copy_failed", "the surface mesh could not be copied for closest points");
+      normals_.push_back(face_normal(f));
     }
     fast_tree_ = std::make_unique<Fast_tree>(faces(fast_mesh_).first, faces(fast_mesh_).second, fast_mesh_);
     fast_tree_->accelerate_distance_queries();
-    for(auto f : faces(mesh)) normals_.push_back(face_normal(f)); // each answer needs its face's
   }
 
   /// The distance along -normal from `p` to the first face (a ray cast from just below `p`,
