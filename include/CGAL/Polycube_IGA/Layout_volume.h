@@ -230,11 +230,9 @@ void untangle_and_evaluate(const TriangleMesh& mesh, Layout_volume_result& r, co
   const std::size_t np = r.volume.number_of_patches();
   const bool measured = r.quality_evaluated && r.quality.certified.size() == np && r.quality.sampled.size() == np &&
                         r.quality_samples_per_span == o.quality_samples_per_span &&
-                        r.distance_samples_per_direction == o.distance_samples_per_direction &&
-                        r.quality_bound.maximum_depth == o.bound.maximum_depth && r.quality_bound.maximum_boxes == o.bound.maximum_boxes;
-  const Jacobian_bound_options default_bound;
-  const bool default_certificates = measured && o.bound.maximum_depth == default_bound.maximum_depth &&
-                                    o.bound.maximum_boxes == default_bound.maximum_boxes;
+                        r.distance_samples_per_direction == o.distance_samples_per_direction && r.quality_bound == o.bound;
+  // The untangler certifies with the default options.
+  const bool default_certificates = measured && o.bound == Jacobian_bound_options();
   if(o.untangle) r.untangling = untangle_volume(r.volume, o.untangling, default_certificates ? &r.quality.certified : nullptr);
   const auto t1 = Clock::now();
   r.untangling_seconds = std::chrono::duration<double>(t1 - t0).count();

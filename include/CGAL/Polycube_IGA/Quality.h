@@ -57,6 +57,12 @@ struct Jacobian_bound_options
   std::size_t maximum_boxes = 200000; ///< overall budget per patch
 };
 
+/// Options giving the same bounds.
+inline bool operator==(const Jacobian_bound_options& a, const Jacobian_bound_options& b)
+{
+  return a.maximum_depth == b.maximum_depth && a.maximum_boxes == b.maximum_boxes;
+}
+
 namespace internal {
 
 /// Sample values over [first, last]: `n` per knot span, span ends shared.
