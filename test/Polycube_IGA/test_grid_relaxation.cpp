@@ -10,12 +10,17 @@
 #include <CGAL/Polycube_IGA/Cuboid_decomposition.h>
 #include <CGAL/Polycube_IGA/Grid_relaxation.h>
 #include <CGAL/Polycube_IGA/Patch_sampling.h>
+#include <CGAL/Polycube_IGA/internal/triangle_projection.h>
 #include <CGAL/polycube_iga.h>
+
+#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <CGAL/boost/graph/generators.h>
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 using namespace test_support;
 namespace PI = CGAL::Polycube_IGA;
@@ -186,4 +191,90 @@ TEST_CASE("build relaxes the grids of an invalid volume and keeps them only when
   const auto torus = PI::build_trivariate_model(load(data("torus.obj")));
   REQUIRE(torus.is_valid());
   CHECK_FALSE(torus.relaxation_attempted);
+}
+
+TEST_CASE("a triangle's closest point and the feature holding it agree with a dense search", "[grid_relaxation][probe]")
+{
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1., 1.);
+  auto random_point = [&] { return Eigen::Vector3d(u(rng), u(rng), u(rng)); };
+  for(int k = 0; k < 300; ++k) {
+    std::array<Eigen::Vector3d, 3> t{random_point(), random_point(), random_point()};
+    if(k % 10 == 0) t[2] = t[0] + 0.3 * (t[1] - t[0]); // no area: a segment
+    const Eigen::Vector3d p = 2. * random_point();
+    const PI::internal::Triangle_projection q = PI::internal::project_on_triangle(p, t);
+    // No point of a fine barycentric grid is closer.
+    double dense = std::numeric_limits<double>::infinity();
+    const int n = 200;
+    for(int i = 0; i <= n; ++i)
+      for(int j = 0; i + j <= n; ++j) {
+        const Eigen::Vector3d x = t[0] + (double(i) / n) * (t[1] - t[0]) + (double(j) / n) * (t[2] - t[0]);
+        dense = std::min(dense, (x - p).norm());
+      }
+    const double d = (q.point - p).norm();
+    INFO("triangle " << k);
+    CHECK(d <= dense + 1e-12);
+    CHECK(d >= dense - 0.02); // the grid's spacing
+    // The feature named holds the point.
+    if(q.vertex >= 0) {
+      CHECK(q.edge == -1);
+      CHECK(q.point == t[std::size_t(q.vertex)]);
+    } else if(q.edge >= 0) {
+      const Eigen::Vector3d a = t[std::size_t(q.edge)], b = t[std::size_t((q.edge + 1) % 3)];
+      CHECK((q.point - a).cross(b - a).norm() <= 1e-12 * (1. + (b - a).squaredNorm()));
+      CHECK((p - q.point).dot(b - a) == Approx(0.).margin(1e-12));
+    } else {
+      // Inside: p projects along the triangle's normal.
+      const Eigen::Vector3d normal = (t[1] - t[0]).cross(t[2] - t[0]).normalized();
+      CHECK((p - q.point).cross(normal).norm() == Approx(0.).margin(1e-9));
+    }
+  }
+}
+
+TEST_CASE("a walk to the closest point on sphere.off finds the point the whole tree finds", "[grid_relaxation][probe]")
+{
+  const Mesh mesh = load(data("sphere.off"));
+  const PI::internal::Mesh_probe<Mesh> probe(mesh);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1., 1.);
+  // From a point of the mesh, targets outside the convex mesh, up to a tenth of the radius
+  // away: there the closest point is the only local minimum near the start, which the walk
+  // must reach. (From inside, a convex mesh has one local minimum per face near the point.)
+  int walked = 0;
+  for(auto v : vertices(mesh)) {
+    const Point& c = mesh.point(v);
+    const Eigen::Vector3d x(c.x(), c.y(), c.z());
+    const auto from = probe.closest_point(x + 0.01 * Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    Eigen::Vector3d sideways(u(rng), u(rng), u(rng));
+    sideways -= sideways.dot(x) / x.squaredNorm() * x;
+    const Eigen::Vector3d target = x * (1. + 0.05 * (u(rng) + 1.2)) + 0.1 * x.norm() * sideways;
+    const auto walk = probe.closest_point(target, from);
+    const auto tree = probe.closest_point(target);
+    CHECK((walk.point - target).norm() == Approx((tree.point - target).norm()).epsilon(1e-12));
+    CHECK((walk.point - tree.point).norm() < 1e-9);
+    CHECK(walk.normal.dot(tree.normal) > 0.);
+    walked += walk.hint.second != from.hint.second;
+  }
+  CHECK(walked > int(num_vertices(mesh)) / 2); // most walks left their first face
+}
+
+TEST_CASE("a walk to the closest point stays on its side of a thin wall", "[grid_relaxation][probe]")
+{
+  // A plate 0.02 thick: a target just below its middle plane is closest to the bottom face,
+  // but a point moving there from the top face must stay on the top.
+  using P = Point;
+  Mesh plate;
+  CGAL::make_hexahedron(P(0, 0, 0), P(1, 0, 0), P(1, 1, 0), P(0, 1, 0), P(0, 1, 0.02), P(0, 0, 0.02), P(1, 0, 0.02),
+                        P(1, 1, 0.02), plate);
+  CGAL::Polygon_mesh_processing::triangulate_faces(plate);
+  const PI::internal::Mesh_probe<Mesh> probe(plate);
+  const auto top = probe.closest_point(Eigen::Vector3d(0.4, 0.4, 0.05));
+  REQUIRE(top.normal.z() > 0.99);
+  const Eigen::Vector3d target(0.6, 0.5, 0.008);
+  const auto walk = probe.closest_point(target, top);
+  CHECK(walk.normal.z() > 0.99);
+  CHECK(walk.point.z() == Approx(0.02));
+  CHECK(walk.point.x() == Approx(0.6));
+  CHECK(walk.point.y() == Approx(0.5));
+  CHECK(probe.closest_point(target).normal.z() < -0.99); // the whole tree's answer: the bottom
 }

@@ -204,7 +204,7 @@ Grid_relaxation_result relax_surface_grids(const Polycube_layout<Point_3>& L, Pa
       for(int w : nb[std::size_t(v)]) mean += x[std::size_t(w)];
       mean /= double(nb[std::size_t(v)].size());
       const Eigen::Vector3d target = x[std::size_t(v)] + o.step * (mean - x[std::size_t(v)]);
-      const auto q = probe.closest_point(target, at[std::size_t(v)].hint);
+      const auto q = probe.closest_point(target, at[std::size_t(v)]);
       if(q.normal.dot(at[std::size_t(v)].normal) <= 0.) {
         ++r.refused_moves;
         continue;

@@ -44,6 +44,7 @@
 #include <CGAL/Polycube_IGA/Patch_sampling.h>
 #include <CGAL/Polycube_IGA/Polycube_layout.h>
 #include <CGAL/Polycube_IGA/internal/cuboid_frames.h>
+#include <CGAL/Polycube_IGA/internal/triangle_projection.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -192,12 +193,61 @@ public:
     return surface_point(fast_tree_->closest_point_and_primitive(as_fast_point(p)));
   }
 
-  /// Same, searched from `hint` (a point of the mesh near the answer, e.g. the previous answer
-  /// for a point that moved a little): far fewer boxes are visited.
-  Surface_point closest_point(const Eigen::Vector3d& p, const Hint& hint) const
+  /// The point of the mesh closest to `p` found by walking from `from` (an earlier answer,
+  /// for a point that moved a little) across the edge or around the vertex that holds the
+  /// current closest point, while a face there is closer: a local closest point, which stays
+  /// on `from`'s side of a thin wall. One to a few faces are tested where a tree search
+  /// visits dozens of boxes (the grid relaxation asks millions of these). A walk longer than
+  /// the mesh's face count ends in a search of the whole tree.
+  Surface_point closest_point(const Eigen::Vector3d& p, const Surface_point& from) const
   {
     CGAL_precondition(fast_tree_ != nullptr);
-    return surface_point(fast_tree_->closest_point_and_primitive(as_fast_point(p), hint));
+    using Face = typename Fast_mesh::Face_index;
+    using Halfedge = typename Fast_mesh::Halfedge_index;
+    auto project = [&](Face f, std::array<Halfedge, 3>& h) {
+      h[0] = fast_mesh_.halfedge(f);
+      h[1] = fast_mesh_.next(h[0]);
+      h[2] = fast_mesh_.next(h[1]);
+      std::array<Eigen::Vector3d, 3> t;
+      for(std::size_t k = 0; k < 3; ++k) {
+        const auto& q = fast_mesh_.point(fast_mesh_.source(h[k]));
+        t[k] = Eigen::Vector3d(q.x(), q.y(), q.z());
+      }
+      return project_on_triangle(p, t);
+    };
+    Face f = from.hint.second;
+    std::array<Halfedge, 3> h;
+    Triangle_projection best = project(f, h);
+    double d = (best.point - p).squaredNorm();
+    const std::size_t longest = fast_mesh_.number_of_faces();
+    for(std::size_t step = 0; best.vertex >= 0 || best.edge >= 0; ++step) {
+      if(step > longest) return closest_point(p);
+      Face next = Fast_mesh::null_face();
+      Triangle_projection next_best;
+      std::array<Halfedge, 3> next_h;
+      auto consider = [&](Face g) {
+        if(g == Fast_mesh::null_face() || g == f) return;
+        std::array<Halfedge, 3> hg;
+        const Triangle_projection q = project(g, hg);
+        const double dg = (q.point - p).squaredNorm();
+        if(dg < d) {
+          d = dg;
+          next = g;
+          next_best = q;
+          next_h = hg;
+        }
+      };
+      if(best.edge >= 0)
+        consider(fast_mesh_.face(fast_mesh_.opposite(h[std::size_t(best.edge)])));
+      else
+        for(Face g : CGAL::faces_around_target(fast_mesh_.prev(h[std::size_t(best.vertex)]), fast_mesh_)) consider(g);
+      if(next == Fast_mesh::null_face()) break;
+      f = next;
+      best = next_best;
+      h = next_h;
+    }
+    const Eigen::Vector3d& x = best.point;
+    return {x, normals_[std::size_t(f)], Hint(Fast_kernel::Point_3(x.x(), x.y(), x.z()), f)};
   }
 
 private:
