@@ -179,6 +179,20 @@ TEST_CASE("build gives a certified valid volume for a torus", "[build]")
   }
 }
 
+TEST_CASE("build turns a box into a certified valid volume that is the box", "[build][features]")
+{
+  // The layout follows the box's edges (see test_cuboid), so the fitted faces are flat and
+  // the volume's boundary is the box up to rounding.
+  const auto model = PI::build_trivariate_model(load(data("cube-meshed.off")));
+  REQUIRE(model.is_valid());
+  CHECK(model.volume.volume.number_of_patches() == 7); // the core and a slab under each side
+  for(const auto& b : model.volume.quality.certified) CHECK(b.lower_bound > 0.);
+  CHECK(model.volume.quality.overall_sampled.min_scaled_jacobian > 0.5);
+  CHECK(model.volume.distance.relative < 1e-9);
+  CHECK(model.grid_attempts.size() == 1);
+  CHECK_FALSE(model.relaxation_attempted);
+}
+
 TEST_CASE("build gives a certified valid volume for a thick pipe", "[build][untangling]")
 {
   // pipe.off, a torus-class thick pipe: its ring's sectors turn by 120 degrees and are split

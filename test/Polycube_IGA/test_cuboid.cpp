@@ -9,6 +9,7 @@
 #include "test_support.h"
 
 #include <CGAL/Polycube_IGA/Cuboid_decomposition.h>
+#include <CGAL/Polycube_IGA/internal/feature_curves.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/centroid.h>
@@ -58,6 +59,64 @@ TEST_CASE("cuboid decomposition of a sphere is one cube", "[cuboid]")
   CHECK(L.arcs.size() == 12);
   CHECK(L.number_of_surface_patches() == 6);
   check_layout(m, L);
+}
+
+TEST_CASE("sharp edges form the curves of a box, none on a smooth mesh, loops on a turned part", "[cuboid][features]")
+{
+  auto curves_of = [](const char* name) {
+    const Mesh m = load(data(name));
+    return PI::internal::feature_curves(m, PI::internal::sharp_edges(m, 45.));
+  };
+  const auto box = curves_of("cube-meshed.off");
+  CHECK(box.corners.size() == 8);
+  CHECK(box.curves.size() == 12);
+  CHECK(box.closed == 0);
+  for(std::size_t c : box.corners) CHECK(box.sharp_degree[c] == 3);
+  const auto smooth = curves_of("sphere.off");
+  CHECK(smooth.corners.empty());
+  CHECK(smooth.curves.empty());
+  CHECK(smooth.closed == 0);
+  // rotor.off: a turned ring with two pins, every crease a circle without a corner (five
+  // around the ring's axis, two around each pin).
+  const auto rotor = curves_of("rotor.off");
+  CHECK(rotor.corners.empty());
+  CHECK(rotor.closed == 9);
+}
+
+TEST_CASE("cuboid decomposition of a box lays the cube on the box's own edges", "[cuboid][features]")
+{
+  // cube-meshed.off: the cube [-1, 1]^3. Its corners are the nodes and its edges the arcs,
+  // so every patch is one flat side.
+  const Mesh m = load(data("cube-meshed.off"));
+  const Layout L = decompose(m);
+  CHECK(L.layout_class == PI::Layout_class::sphere);
+  REQUIRE(L.cuboids.size() == 1);
+  REQUIRE(L.nodes.size() == 8);
+  CHECK(L.arcs.size() == 12);
+  CHECK(L.number_of_surface_patches() == 6);
+  check_layout(m, L);
+  auto at = [&](auto v) { const Point& p = L.mesh.point(v); return std::array<double, 3>{p.x(), p.y(), p.z()}; };
+  for(auto n : L.nodes)
+    for(double x : at(n)) CHECK(std::abs(x) == 1.);
+  for(const auto& a : L.arcs)
+    for(auto v : a.vertices) {
+      int on_faces = 0;
+      for(double x : at(v)) on_faces += std::abs(x) == 1.;
+      CHECK(on_faces >= 2); // on an edge of the box
+    }
+  for(const auto& pa : L.patches) {
+    if(pa.kind != Layout::SURFACE) continue;
+    // One side: a coordinate is +1 or -1 on every vertex of every face.
+    std::array<int, 6> count{};
+    std::size_t n = 0;
+    for(auto f : pa.faces)
+      for(auto v : vertices_around_face(halfedge(f, L.mesh), L.mesh)) {
+        ++n;
+        const auto x = at(v);
+        for(int k = 0; k < 3; ++k) count[std::size_t(2 * k + (x[std::size_t(k)] > 0.))] += std::abs(x[std::size_t(k)]) == 1.;
+      }
+    CHECK(*std::max_element(count.begin(), count.end()) == int(n));
+  }
 }
 
 TEST_CASE("cuboid decomposition of a disk is one capped cube", "[cuboid]")

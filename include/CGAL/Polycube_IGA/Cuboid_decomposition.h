@@ -34,6 +34,7 @@
 #include <CGAL/Polycube_IGA/Polycube_layout.h>
 #include <CGAL/Polycube_IGA/Surface_topology.h>
 #include <CGAL/Polycube_IGA/parameters.h>
+#include <CGAL/Polycube_IGA/internal/feature_curves.h>
 #include <CGAL/Polycube_IGA/internal/layout_assembly.h>
 #include <CGAL/Polycube_IGA/internal/mesh_graph.h>
 #include <CGAL/Polycube_IGA/internal/mesh_refinement.h>
@@ -354,9 +355,73 @@ private:
   }
 
   // ---------------------------------------------------------------- sphere -----------
+  /// A closed genus-0 mesh whose sharp edges (more than 45 degrees) form the edges of a
+  /// cube, and nothing else (a box exported from CAD), is laid out on them: its 8 corners are
+  /// the nodes, its 12 feature curves the arcs, its 6 sides the patches. The generic cube of
+  /// sphere() would cross the creases, which no smooth face follows (cube-meshed.off: 6 of 12
+  /// patches uncertified, 5.1% of the diagonal off). Empty when the features are anything else.
+  static std::optional<Layout> feature_cube(const Mesh& m)
+  {
+    using namespace internal;
+    const Feature_curves fc = feature_curves(m, sharp_edges(m, 45.));
+    if(fc.corners.size() != 8 || fc.curves.size() != 12 || fc.closed != 0) return std::nullopt;
+    std::map<std::size_t, int> corner; // vertex -> corner number
+    for(std::size_t c : fc.corners) {
+      if(fc.sharp_degree[c] != 3) return std::nullopt;
+      corner.emplace(c, int(corner.size()));
+    }
+    std::array<std::vector<int>, 8> adjacent;
+    for(const auto& path : fc.curves) {
+      const int a = corner.at(path.front()), b = corner.at(path.back());
+      if(a == b || std::count(adjacent[std::size_t(a)].begin(), adjacent[std::size_t(a)].end(), b)) return std::nullopt;
+      adjacent[std::size_t(a)].push_back(b);
+      adjacent[std::size_t(b)].push_back(a);
+    }
+    // Cube coordinates as 3 bits: corner 0 at 000, its neighbours at 001, 010, 100, every
+    // other corner the union of two coded neighbours; a cube graph iff each curve then
+    // changes exactly one bit and all 8 codes differ.
+    std::array<int, 8> code;
+    code.fill(-1);
+    code[0] = 0;
+    for(std::size_t k = 0; k < 3; ++k) code[std::size_t(adjacent[0][k])] = 1 << k;
+    for(int round = 0; round < 2; ++round)
+      for(std::size_t c = 0; c < 8; ++c) {
+        if(code[c] >= 0) continue;
+        int bits = 0, known = 0;
+        for(int d : adjacent[c])
+          if(code[std::size_t(d)] >= 0 && code[std::size_t(d)] != 0) bits |= code[std::size_t(d)], ++known;
+        if(known >= 2) code[c] = bits;
+      }
+    std::array<bool, 8> taken{};
+    for(std::size_t c = 0; c < 8; ++c) {
+      if(code[c] < 0 || code[c] > 7 || taken[std::size_t(code[c])]) return std::nullopt;
+      taken[std::size_t(code[c])] = true;
+    }
+    for(std::size_t c = 0; c < 8; ++c)
+      for(int d : adjacent[c]) {
+        const int x = code[c] ^ code[std::size_t(d)];
+        if(x != 1 && x != 2 && x != 4) return std::nullopt;
+      }
+    Layout_builder bld;
+    std::array<std::size_t, 8> cube{};
+    for(std::size_t c : fc.corners) cube[std::size_t(code[std::size_t(corner.at(c))])] = bld.node(c);
+    for(const auto& path : fc.curves) bld.arc(path);
+    bld.cuboids.push_back(cube);
+    // The curves must cut the surface into 6 quads, the cube's sides: else the generic cube.
+    try {
+      Mesh copy = m;
+      Layout L = finish_layout(std::move(copy), bld, Layout_class::sphere, 0, 0, 0);
+      if(L.patches.size() != 6 || !L.validate().is_valid()) return std::nullopt;
+      return L;
+    } catch(const Internal_error&) {
+      return std::nullopt;
+    }
+  }
+
   static Layout sphere(Mesh m)
   {
     using namespace internal;
+    if(std::optional<Layout> box = feature_cube(m)) return std::move(*box);
     Mesh_graph<Mesh> g(m, get(CGAL::vertex_point, m));
     // Two far points by a double sweep; the bisector of their distance fields splits the
     // sphere into two connected vertex sets (every vertex reaches its source inside its set).

@@ -115,19 +115,19 @@ inline Eigen::Vector3d grid_normal(const Point_grid& g, int i, int j)
 }
 
 /// Ray casts and closest faces on the surface mesh, for the inner nodes (one AABB tree), and
-/// closest points for the grid relaxation (Grid_relaxation.h) on a second tree, built unless
-/// `closest_points` is false.
+/// closest points for the grid relaxation (Grid_relaxation.h) on a plain-double copy of the
+/// mesh (a second tree, and walks over the copy), built unless `closest_points` is false.
 template <class Mesh>
 class Mesh_probe
 {
   using Point = typename boost::property_traits<typename boost::property_map<Mesh, CGAL::vertex_point_t>::const_type>::value_type;
   using K = typename CGAL::Kernel_traits<Point>::Kernel;
   using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>>;
-  // Closest points are constructions, in doubles with either kernel. Their search's pruning
-  // test (sphere against box) is a filtered exact predicate in K and fails its filter for
-  // the tiny spheres of a hinted search, which a relaxation makes a million of; with plain
-  // doubles a box within rounding of the sphere may be skipped, which can only lose a face
-  // as close as the best one to within rounding.
+  // Closest points are constructions, in doubles with either kernel. A tree search's pruning
+  // test (sphere against box) is a filtered exact predicate in K whose filter fails for small
+  // spheres; with plain doubles a box within rounding of the sphere may be skipped, which can
+  // only lose a face as close as the best one to within rounding. The walks of
+  // closest_point(p, from) run on the same plain copy.
   using Fast_kernel = CGAL::Simple_cartesian<double>;
   using Fast_mesh = CGAL::Surface_mesh<Fast_kernel::Point_3>;
   using Fast_tree = CGAL::AABB_tree<CGAL::AABB_traits<Fast_kernel, CGAL::AABB_face_graph_triangle_primitive<Fast_mesh>>>;
