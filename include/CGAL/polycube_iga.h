@@ -38,6 +38,17 @@ namespace internal {
 /// of the shape is missing (not fitted too coarsely), which no finer grid recovers.
 inline bool part_missing(const Boundary_distance& d) { return d.mesh_to_spline > 4. * d.spline_to_mesh; }
 
+/// x with 3 significant digits.
+inline std::string short_number(double x)
+{
+  std::ostringstream os;
+  os << std::setprecision(3) << x;
+  return os.str();
+}
+
+/// A fraction as a percentage with 3 significant digits.
+inline std::string percent_text(double fraction) { return short_number(100. * fraction) + "%"; }
+
 /// Says where the boundary is too far from the mesh. A mesh point much farther from the
 /// volume than any volume point is from the mesh means a part of the shape is missing,
 /// typically a protrusion that one layout patch covers and its map to the square shrinks to
@@ -45,12 +56,8 @@ inline bool part_missing(const Boundary_distance& d) { return d.mesh_to_spline >
 template <class Point_3>
 std::string boundary_distance_message(const Polycube_layout<Point_3>& layout, const Boundary_distance& d, double limit)
 {
-  auto number = [](double x) {
-    std::ostringstream os;
-    os << std::setprecision(3) << x;
-    return os.str();
-  };
-  auto percent = [&](double x) { return number(100. * x) + "%"; };
+  auto number = short_number;
+  auto percent = percent_text;
   auto point = [&](const std::array<double, 3>& p) { return "(" + number(p[0]) + ", " + number(p[1]) + ", " + number(p[2]) + ")"; };
   std::string s = "boundary distance " + percent(d.relative) + " of the bounding-box diagonal exceeds " + percent(limit) + ": ";
   if(d.mesh_to_spline >= d.spline_to_mesh) {
@@ -125,6 +132,11 @@ struct Trivariate_model
   /// True when the volume at the first grid was invalid and was built again on relaxed
   /// surface grids (`grid_relaxation_sweeps`); `volume.relaxation` says whether it was kept.
   bool relaxation_attempted = false;
+  /// True when the volume was far from the mesh after that and was built again from
+  /// stretch-reduced patch maps (`stretch_rounds`); `volume.samples` were so built if kept.
+  bool stretch_attempted = false;
+  /// The rounds of stretch reduction of the kept volume's patch maps (0: plain mean-value).
+  int stretch_rounds = 0;
 
   /// True when every patch's det J is certified positive and the boundary is within
   /// `maximum_boundary_distance` of the mesh.
@@ -180,6 +192,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   volume_defaults.untangle = true;
   Layout_volume_options volume_options = layout_volume_options(np, volume_defaults);
   volume_options.relaxation = Grid_relaxation_options::none(); // the second attempt's (below)
+  volume_options.sampling.stretch_rounds = 0;                  // the third attempt's (below)
   // Untangling costs more than building (eight.off: 3 s against 1 s) and cannot repair
   // folded surface grids, so the first two constructions are compared untangled-free and
   // the better one is untangled (below).
@@ -209,14 +222,18 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   const int sweeps = int(option(np, internal_np::grid_relaxation_sweeps, 100));
   if(sweeps < 0) throw Invalid_input_error("invalid_parameter", "grid_relaxation_sweeps must not be negative");
   // A construction replaces the kept one if it is valid, or leaves fewer patches uncertified
-  // without its boundary moving farther off the mesh.
+  // without its boundary moving farther off the mesh, or as many and brings a boundary that
+  // is too far closer.
   auto better_than_kept = [&](const Layout_volume_result& r) {
     if(!r.quality_evaluated) return false;
     if(internal::invalidity_reasons(r, model.maximum_boundary_distance).empty()) return true;
-    const bool closer = r.distance.relative <= std::max(model.maximum_boundary_distance, model.volume.distance.relative);
-    return internal::uncertified_patches(r) < internal::uncertified_patches(model.volume) && closer;
+    const double kept = model.volume.distance.relative;
+    const bool closer = r.distance.relative <= std::max(model.maximum_boundary_distance, kept);
+    const std::size_t fewer = internal::uncertified_patches(r), before = internal::uncertified_patches(model.volume);
+    return (fewer < before && closer) || (fewer == before && kept > model.maximum_boundary_distance && r.distance.relative < kept);
   };
   std::optional<Layout_volume_result> other; // the construction not chosen, if any
+  int other_stretch_rounds = 0;
   if(sweeps > 0 && worth_retrying()) {
     Layout_volume_options relaxed = volume_options;
     relaxed.relaxation = Grid_relaxation_options();
@@ -240,6 +257,44 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     }
     if(r.quality_evaluated) other = std::move(r);
   }
+  // A boundary far from the mesh is mostly a protrusion that one patch covers and its
+  // mean-value map shrinks (a nose, a trunk, a bone's shaft): a uniform grid on the square
+  // samples it too sparsely. The volume is built again from stretch-reduced maps
+  // (Patch_sampling_options::stretch_rounds), kept on the same terms as the relaxed one.
+  // Not by default: on some valid shapes they cost det J (double-torus-example.off).
+  const int stretch_rounds = int(option(np, internal_np::stretch_rounds, 3));
+  if(stretch_rounds < 0) throw Invalid_input_error("invalid_parameter", "stretch_rounds must not be negative");
+  auto far_from_mesh = [&] {
+    const std::vector<std::string> reasons = model.invalidity_reasons();
+    return std::find(reasons.begin(), reasons.end(), "boundary_distance") != reasons.end();
+  };
+  if(stretch_rounds > 0 && model.volume.quality_evaluated && far_from_mesh()) {
+    Layout_volume_options stretched = volume_options;
+    stretched.sampling.stretch_rounds = stretch_rounds;
+    Layout_volume_result r;
+    model.stretch_attempted = true;
+    try {
+      stage("volume construction, stretch-reduced maps", [&] { r = layout_volume(model.layout, stretched); });
+    } catch(const Error& e) {
+      model.warnings.push_back("stretch-reduced maps failed: " + e.reason() + ": " + e.what());
+    }
+    if(better_than_kept(r)) {
+      model.warnings.push_back("the patches' maps were stretch-reduced (" + std::to_string(stretch_rounds) +
+                               " rounds): the boundary is " + internal::percent_text(r.distance.relative) +
+                               " of the diagonal from the mesh instead of " + internal::percent_text(model.volume.distance.relative) +
+                               ", " + std::to_string(internal::uncertified_patches(r)) + " patches not certified instead of " +
+                               std::to_string(internal::uncertified_patches(model.volume)) + " (before untangling)");
+      other = std::move(model.volume);
+      other_stretch_rounds = 0;
+      model.volume = std::move(r);
+      volume_options.sampling.stretch_rounds = stretch_rounds; // the finer grids too
+      model.stretch_rounds = stretch_rounds;
+    } else if(r.quality_evaluated) {
+      model.warnings.push_back("stretch-reduced maps were tried and left the boundary " + internal::percent_text(r.distance.relative) +
+                               " of the diagonal from the mesh with " + std::to_string(internal::uncertified_patches(r)) +
+                               " patches not certified: not used");
+    }
+  }
   // The better construction is untangled; if it stays invalid, the other one too, and the
   // one with fewer uncertified patches (its boundary no farther off the mesh) is kept.
   if(untangle && worth_retrying()) {
@@ -252,6 +307,8 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
                                  " surface grids leave " + std::to_string(alternative) + " patches uncertified instead of " +
                                  std::to_string(kept) + ": they are used");
         std::swap(model.volume, *other);
+        std::swap(model.stretch_rounds, other_stretch_rounds);
+        volume_options.sampling.stretch_rounds = model.stretch_rounds;
       }
     }
   }

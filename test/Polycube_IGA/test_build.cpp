@@ -131,14 +131,20 @@ TEST_CASE("build gives a certified valid volume for a disk, on a finer grid when
 {
   // mushroom.off: one cube, capped by its boundary loop, whose sides climb the stem and
   // wrap the head (a chain of 2 along its bend). At 8 samples per side its boundary is 2.05%
-  // of the diagonal from the mesh; the build retries at 16 (one doubling by default), which
-  // is valid, and says so.
+  // of the diagonal from the mesh; without stretch-reduced maps the build retries at 16 (one
+  // doubling by default), which is valid, and says so.
   const Mesh m = load(data("mushroom.off"));
-  const auto once = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).maximum_grid_resolution(8));
+  const auto once = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).maximum_grid_resolution(8).stretch_rounds(0));
   CHECK(once.layout.layout_class == PI::Layout_class::disk);
   CHECK(once.grid_attempts == std::vector<int>{8});
   CHECK_FALSE(once.is_valid());
-  const auto model = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8));
+  CHECK(once.volume.distance.relative > 0.02);
+  // With them (the default) the stem and head get their share of the grid: 1.55%, valid at 8.
+  const auto stretched = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).maximum_grid_resolution(8));
+  CHECK(stretched.stretch_rounds == 3);
+  CHECK(stretched.is_valid());
+  CHECK(stretched.volume.distance.relative < once.volume.distance.relative);
+  const auto model = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).stretch_rounds(0));
   CHECK(model.grid_attempts == std::vector<int>{8, 16});
   REQUIRE(model.is_valid());
   CHECK(model.volume.samples.segments == 16);
@@ -150,7 +156,7 @@ TEST_CASE("build gives a certified valid volume for a disk, on a finer grid when
   for(const auto& w : model.warnings) said = said || w.find("grid of 16") != std::string::npos;
   CHECK(said);
   // Deterministic, retry included.
-  const auto again = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8));
+  const auto again = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).stretch_rounds(0));
   CHECK(again.volume.volume.patch(0).control_points() == model.volume.volume.patch(0).control_points());
 }
 
@@ -191,6 +197,29 @@ TEST_CASE("build turns a box into a certified valid volume that is the box", "[b
   CHECK(model.volume.distance.relative < 1e-9);
   CHECK(model.grid_attempts.size() == 1);
   CHECK_FALSE(model.relaxation_attempted);
+}
+
+TEST_CASE("build stretches the patch maps when a protrusion is missed, and only then", "[build][stretch]")
+{
+  // maxFace.obj: the nose of the face mask is 4.3% of the diagonal off the plain volume.
+  const Mesh m = load(data("maxFace.obj"));
+  const auto model = PI::build_trivariate_model(m, PI::parameters::maximum_grid_resolution(16));
+  CHECK(model.stretch_attempted);
+  CHECK(model.stretch_rounds == 3);
+  REQUIRE(model.is_valid());
+  for(const auto& b : model.volume.quality.certified) CHECK(b.lower_bound > 0.);
+  CHECK(model.volume.distance.relative < 0.02);
+  CHECK(model.volume.quality.overall_sampled.min_scaled_jacobian > 0.2);
+  // Without it the nose is missed.
+  const auto plain = PI::build_trivariate_model(m, PI::parameters::maximum_grid_resolution(16).stretch_rounds(0));
+  CHECK_FALSE(plain.stretch_attempted);
+  CHECK(plain.stretch_rounds == 0);
+  CHECK(plain.volume.distance.relative > 0.04);
+  const std::vector<std::string> reasons = plain.invalidity_reasons();
+  CHECK(std::find(reasons.begin(), reasons.end(), "boundary_distance") != reasons.end());
+  // A volume near the mesh is not built again (the torus: valid at once).
+  const auto torus = PI::build_trivariate_model(load(data("torus.obj")));
+  CHECK_FALSE(torus.stretch_attempted);
 }
 
 TEST_CASE("build gives a certified valid volume for a thick pipe", "[build][untangling]")

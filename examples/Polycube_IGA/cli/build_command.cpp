@@ -87,6 +87,8 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("untangling_pinned_patches", V.untangling.pinned_patches.size())
       .member("relaxation_attempted", model.relaxation_attempted)
       .member("relaxed_grids", V.relaxation.sweeps > 0)
+      .member("stretch_attempted", model.stretch_attempted)
+      .member("stretch_rounds", model.stretch_rounds)
       .member("relaxation_sweeps", V.relaxation.sweeps)
       .member("relaxation_last_move", V.relaxation.last_move)
       .member("valid", model.is_valid())
@@ -151,7 +153,7 @@ int run_build(const Arguments& args)
   Parsed_arguments a(args, {"--merge-duplicates", "--drop-isolated", "--no-self-intersection-test", "--allow-invalid", "--quiet",
                       "--no-untangle"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
-                      "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--relax-sweeps"});
+                      "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--relax-sweeps", "--stretch-rounds"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
   if(out.empty()) throw PI::Invalid_input_error("bad_arguments", "build needs -o OUT.xml");
@@ -163,6 +165,7 @@ int run_build(const Arguments& args)
   const int refinements = positive_option(a, "--max-refinements", 2, 0, 5);
   const int max_grid = positive_option(a, "--max-grid", std::min(2 * grid, 512), grid, 512);
   const int sweeps = positive_option(a, "--relax-sweeps", 100, 0, 100000);
+  const int stretch = positive_option(a, "--stretch-rounds", 3, 0, 100);
   const bool verbose = !a.has("--quiet") && isatty(2);
   auto progress = [&](const std::string& stage) {
     if(verbose) std::cerr << "polycube_iga: " << stage << "...\n";
@@ -176,7 +179,7 @@ int run_build(const Arguments& args)
   const auto model = PI::build_trivariate_model(
     in.mesh, PI::parameters::grid_resolution(grid).spline_degree(degree).cut_criterion(criterion).boundary_layer(layer)
       .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
-      .maximum_refinements(refinements).maximum_grid_resolution(max_grid).grid_relaxation_sweeps(sweeps),
+      .maximum_refinements(refinements).maximum_grid_resolution(max_grid).grid_relaxation_sweeps(sweeps).stretch_rounds(stretch),
     progress);
 
   const bool write_volume = model.is_valid() || a.has("--allow-invalid");
@@ -216,7 +219,7 @@ Register_command build_command("build", {
   "usage: polycube_iga build MESH -o OUT.xml [--vtu OUT.vtu] [--layout-vtu L.vtu] [--layout-json L.json]\n"
   "                          [--report R.json] [--grid N] [--degree P] [--criterion length|minima|symmetry]\n"
   "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--max-grid M]\n"
-  "                          [--relax-sweeps S] [--no-untangle] [--allow-invalid]\n"
+  "                          [--relax-sweeps S] [--stretch-rounds R] [--no-untangle] [--allow-invalid]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
   "  --layout-vtu L    the polycube layout on the surface: patches, arcs, nodes\n"
@@ -229,6 +232,9 @@ Register_command build_command("build", {
   "  --relax-sweeps S  if the volume is not valid, build it again with the surface grids relaxed\n"
   "                    as one quad mesh on the surface (S sweeps, default 100; 0: never) and keep\n"
   "                    it if fewer patches are left uncertified (finer grids are not relaxed)\n"
+  "  --stretch-rounds R  if the boundary is then farther from the mesh than --max-distance, build\n"
+  "                    it again from patch maps with R rounds of stretch reduction (default 3;\n"
+  "                    0: never), which give protrusions their share of the grid; kept if better\n"
   "  --boundary-layer T  depth of the layer of slabs under the surface, as a fraction of the\n"
   "                    shortest arc at each node (default 0.25; 0: one patch per cuboid)\n"
   "  --no-untangle     keep the constructed inner control points; by default those of patches\n"

@@ -297,7 +297,7 @@ Chained_layout<Point_3> split_long_cuboids(const Polycube_layout<Point_3>& layou
           }
         }
       }
-      const internal::Surface_patch_map M = internal::map_surface_patch(layout, p, cum, local_of);
+      const internal::Surface_patch_map M = internal::map_surface_patch(layout, p, cum, local_of, so.stretch_rounds);
       internal::sample_surface_grid(M, cu_coord, cv_coord, g);
       // Fine index along the tube -> grid index along u (or v).
       auto along = [&](int l) { return increasing ? l : K - l; };

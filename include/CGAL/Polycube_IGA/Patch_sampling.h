@@ -61,6 +61,9 @@ struct Patch_sampling_options
   int grid_segments = 16;
   /// CAP and INTERFACE patches: replace the Coons interior by the discrete harmonic one.
   bool smooth_interior_patches = true;
+  /// SURFACE patches: rounds of stretch reduction after the mean-value map (0: none), which
+  /// give a protrusion that the map shrinks its share of the grid (map_surface_patch()).
+  int stretch_rounds = 0;
 };
 
 namespace internal {
@@ -291,10 +294,11 @@ inline double half_angle_tangent(const Eigen::Vector3d& o, const Eigen::Vector3d
 /// Builds surface patch p as its own small mesh (border = its four arcs' vertices, fixed on
 /// the square by arc length) and solves its Tutte-type embedding. `arc_cum` holds every
 /// arc's cumulative lengths; `local_of` is scratch over the mesh's vertices, all -1 on entry
-/// and on exit (so a patch costs O(its size), not O(mesh)).
+/// and on exit (so a patch costs O(its size), not O(mesh)). `stretch_rounds` rounds of
+/// stretch reduction follow (Patch_sampling_options::stretch_rounds).
 template <class Layout>
 Surface_patch_map map_surface_patch(const Layout& L, std::size_t p, const std::vector<std::vector<double>>& arc_cum,
-                                    std::vector<int>& local_of)
+                                    std::vector<int>& local_of, int stretch_rounds = 0)
 {
   const auto& pa = L.patches[p];
   const auto& mesh = L.mesh;
@@ -359,9 +363,27 @@ Surface_patch_map map_surface_patch(const Layout& L, std::size_t p, const std::v
       hi = hi.cwiseMax(x);
     }
     const double min_length = 1e-12 * std::max((hi - lo).norm(), 1e-300);
+    // Mean-value weight of each triangle's edge c (t[c] -> t[c+1]).
+    std::vector<std::array<double, 3>> weight(M.triangles.size());
+    for(std::size_t f = 0; f < M.triangles.size(); ++f) {
+      const auto& t = M.triangles[f];
+      std::array<double, 3> tan_half;
+      for(int c = 0; c < 3; ++c)
+        tan_half[std::size_t(c)] = half_angle_tangent(M.position[std::size_t(t[std::size_t(c)])],
+                                                      M.position[std::size_t(t[std::size_t((c + 1) % 3)])],
+                                                      M.position[std::size_t(t[std::size_t((c + 2) % 3)])]);
+      for(int c = 0; c < 3; ++c) {
+        const int a = t[std::size_t(c)], b = t[std::size_t((c + 1) % 3)];
+        const double len = std::max((M.position[std::size_t(a)] - M.position[std::size_t(b)]).norm(), min_length);
+        weight[f][std::size_t(c)] = (tan_half[std::size_t(c)] + tan_half[std::size_t((c + 1) % 3)]) / len;
+      }
+    }
+    // Edge ab weighs weight x scale_a x scale_b: positive, so the map stays one-to-one, and
+    // symmetric, so the system stays SPD.
+    std::vector<double> scale(std::size_t(n), 1.);
     std::vector<Eigen::Triplet<double>> trip;
     trip.reserve(M.triangles.size() * 12);
-    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nf, 2);
+    Eigen::MatrixXd rhs(nf, 2);
     auto edge = [&](int a, int b, double w) {
       const int fa = free_index[std::size_t(a)], fb = free_index[std::size_t(b)];
       if(fa >= 0) {
@@ -375,25 +397,57 @@ Surface_patch_map map_surface_patch(const Layout& L, std::size_t p, const std::v
         else rhs.row(fb) += w * M.uv[std::size_t(a)].transpose();
       }
     };
-    for(const auto& t : M.triangles) {
-      std::array<double, 3> tan_half;
-      for(int c = 0; c < 3; ++c)
-        tan_half[std::size_t(c)] = half_angle_tangent(M.position[std::size_t(t[std::size_t(c)])],
-                                                      M.position[std::size_t(t[std::size_t((c + 1) % 3)])],
-                                                      M.position[std::size_t(t[std::size_t((c + 2) % 3)])]);
-      for(int c = 0; c < 3; ++c) {
-        const int a = t[std::size_t(c)], b = t[std::size_t((c + 1) % 3)];
-        const double len = std::max((M.position[std::size_t(a)] - M.position[std::size_t(b)]).norm(), min_length);
-        edge(a, b, (tan_half[std::size_t(c)] + tan_half[std::size_t((c + 1) % 3)]) / len);
+    auto solve = [&] {
+      trip.clear();
+      rhs.setZero();
+      for(std::size_t f = 0; f < M.triangles.size(); ++f)
+        for(int c = 0; c < 3; ++c) {
+          const int a = M.triangles[f][std::size_t(c)], b = M.triangles[f][std::size_t((c + 1) % 3)];
+          edge(a, b, weight[f][std::size_t(c)] * scale[std::size_t(a)] * scale[std::size_t(b)]);
+        }
+      Eigen::SparseMatrix<double> A(nf, nf);
+      A.setFromTriplets(trip.begin(), trip.end());
+      Sparse_cholesky chol;
+      chol.factor(A, "Tutte map of surface patch " + std::to_string(p));
+      const Eigen::MatrixXd x = chol.solve(rhs);
+      for(int v = 0; v < n; ++v)
+        if(free_index[std::size_t(v)] >= 0) M.uv[std::size_t(v)] = x.row(free_index[std::size_t(v)]).transpose();
+    };
+    solve();
+    // Stretch reduction (Yoshizawa, Belyaev, Seidel, "A fast and simple stretch-minimizing
+    // mesh parameterization", 2004): a conformal-like map shrinks a protrusion's faces
+    // exponentially with its height (a nose, a bone's shaft), so a uniform grid on the square
+    // misses it. Each round divides the weights at a vertex by its linear stretch s (the
+    // square root of the surface-to-square area ratio of its faces, relative to the patch's):
+    // row i of sum_j W_ij / (s_i s_j) (uv_i - uv_j) = 0 is Yoshizawa's w_ij / s_j, which
+    // pulls a vertex less towards stretched neighbours, so the shrunken region opens up.
+    for(int round = 0; round < stretch_rounds; ++round) {
+      std::vector<double> area3(M.triangles.size()), area2(M.triangles.size());
+      double total3 = 0., total2 = 0.;
+      for(std::size_t f = 0; f < M.triangles.size(); ++f) {
+        const auto& t = M.triangles[f];
+        const Eigen::Vector3d &x0 = M.position[std::size_t(t[0])], &x1 = M.position[std::size_t(t[1])], &x2 = M.position[std::size_t(t[2])];
+        const Eigen::Vector2d a = M.uv[std::size_t(t[1])] - M.uv[std::size_t(t[0])], b = M.uv[std::size_t(t[2])] - M.uv[std::size_t(t[0])];
+        area3[f] = 0.5 * (x1 - x0).cross(x2 - x0).norm();
+        area2[f] = 0.5 * (a.x() * b.y() - a.y() * b.x());
+        total3 += area3[f];
+        total2 += std::max(area2[f], 0.);
       }
+      if(!(total3 > 0.) || !(total2 > 0.)) break;
+      // Per vertex: the mean area ratio of its faces, weighted by surface area; ratios kept
+      // in [1e-4, 1e4] (a flat or flipped uv triangle counts as the largest).
+      std::vector<double> sum(std::size_t(n), 0.), weight_sum(std::size_t(n), 0.);
+      for(std::size_t f = 0; f < M.triangles.size(); ++f) {
+        const double ratio = area2[f] > 0. ? std::min(std::max((area3[f] / total3) / (area2[f] / total2), 1e-4), 1e4) : 1e4;
+        for(int c : M.triangles[f]) {
+          sum[std::size_t(c)] += area3[f] * ratio;
+          weight_sum[std::size_t(c)] += area3[f];
+        }
+      }
+      for(int v = 0; v < n; ++v)
+        if(weight_sum[std::size_t(v)] > 0.) scale[std::size_t(v)] /= std::sqrt(sum[std::size_t(v)] / weight_sum[std::size_t(v)]);
+      solve();
     }
-    Eigen::SparseMatrix<double> A(nf, nf);
-    A.setFromTriplets(trip.begin(), trip.end());
-    Sparse_cholesky chol;
-    chol.factor(A, "Tutte map of surface patch " + std::to_string(p));
-    const Eigen::MatrixXd x = chol.solve(rhs);
-    for(int v = 0; v < n; ++v)
-      if(free_index[std::size_t(v)] >= 0) M.uv[std::size_t(v)] = x.row(free_index[std::size_t(v)]).transpose();
   }
   // Orientation in uv, exactly: the mesh's faces are counter-clockwise seen from outside and
   // so is the corner square, so a one-to-one map keeps every triangle counter-clockwise.
@@ -583,7 +637,7 @@ Patch_grids sample_layout_patches(const Polycube_layout<Point_3>& layout, const 
     internal::set_patch_border(g, N, layout, pa, r.arc_samples);
     if(N < 2) continue;
     if(pa.kind == Layout::SURFACE) {
-      const internal::Surface_patch_map M = internal::map_surface_patch(layout, p, cum, local_of);
+      const internal::Surface_patch_map M = internal::map_surface_patch(layout, p, cum, local_of, o.stretch_rounds);
       r.flipped_triangles[p] = M.flipped;
       r.unlocated_points[p] = internal::sample_surface_grid(M, N, g);
     } else {
@@ -607,6 +661,8 @@ Patch_grids sample_layout_patches(const Polycube_layout<Point_3>& layout,
 {
   base.grid_segments = int(option(np, internal_np::grid_resolution, base.grid_segments));
   base.smooth_interior_patches = bool(option(np, internal_np::smooth_interior_patches, base.smooth_interior_patches));
+  base.stretch_rounds = int(option(np, internal_np::stretch_rounds, base.stretch_rounds));
+  if(base.stretch_rounds < 0) throw Invalid_input_error("invalid_parameter", "stretch_rounds must not be negative");
   return sample_layout_patches(layout, base);
 }
 
