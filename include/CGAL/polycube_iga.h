@@ -153,6 +153,9 @@ struct Trivariate_model
 /// not valid when its boundary is farther from the mesh than this fraction of the mesh's
 /// bounding-box diagonal) and `maximum_grid_resolution` (twice grid_resolution: an invalid
 /// volume is rebuilt on grids twice as fine up to this; equal to grid_resolution, never).
+/// `grid_relaxation_sweeps` (100) and `stretch_rounds` (3) are those of the second and third
+/// attempts: relaxed surface grids when the first volume is invalid, stretch-reduced patch
+/// maps when the volume is then too far from the mesh (0: no such attempt).
 /// Throws the stages' errors; an invalid layout becomes Internal_error("invalid_layout").
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
 auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values(),
@@ -261,7 +264,8 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   // mean-value map shrinks (a nose, a trunk, a bone's shaft): a uniform grid on the square
   // samples it too sparsely. The volume is built again from stretch-reduced maps
   // (Patch_sampling_options::stretch_rounds), kept on the same terms as the relaxed one.
-  // Not by default: on some valid shapes they cost det J (double-torus-example.off).
+  // Not for the first construction: on some valid shapes they cost det J
+  // (double-torus-example.off is no longer valid at 16 samples).
   const int stretch_rounds = int(option(np, internal_np::stretch_rounds, 3));
   if(stretch_rounds < 0) throw Invalid_input_error("invalid_parameter", "stretch_rounds must not be negative");
   auto far_from_mesh = [&] {
