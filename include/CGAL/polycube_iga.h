@@ -212,10 +212,12 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   const int maximum_grid = int(option(np, internal_np::maximum_grid_resolution, 2 * volume_options.sampling.grid_segments));
   if(maximum_grid > 1024)
     throw Invalid_input_error("invalid_parameter", "maximum_grid_resolution must be at most 1024 samples per patch side");
-  auto worth_retrying = [&] {
+  auto far_from_mesh = [&] {
     const std::vector<std::string> reasons = model.invalidity_reasons();
-    const bool far = std::find(reasons.begin(), reasons.end(), "boundary_distance") != reasons.end();
-    return !reasons.empty() && model.volume.quality_evaluated && !(far && internal::part_missing(model.volume.distance));
+    return std::find(reasons.begin(), reasons.end(), "boundary_distance") != reasons.end();
+  };
+  auto worth_retrying = [&] {
+    return !model.is_valid() && model.volume.quality_evaluated && !(far_from_mesh() && internal::part_missing(model.volume.distance));
   };
   // An invalid volume is built again with its surface grids relaxed as one quad mesh
   // (Grid_relaxation.h): that widens sliver patches and unfolds squeezed cells, but moves
@@ -235,19 +237,24 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     const std::size_t fewer = internal::uncertified_patches(r), before = internal::uncertified_patches(model.volume);
     return (fewer < before && closer) || (fewer == before && kept > model.maximum_boundary_distance && r.distance.relative < kept);
   };
+  // Another construction of the same layout; one that fails leaves a warning and the kept one.
+  auto attempt = [&](const std::string& name, const Layout_volume_options& o, const std::string& what) {
+    Layout_volume_result r;
+    try {
+      stage(name, [&] { r = layout_volume(model.layout, o); });
+    } catch(const Error& e) {
+      model.warnings.push_back(what + " failed: " + e.reason() + ": " + e.what());
+    }
+    return r;
+  };
   std::optional<Layout_volume_result> other; // the construction not chosen, if any
   int other_stretch_rounds = 0;
   if(sweeps > 0 && worth_retrying()) {
     Layout_volume_options relaxed = volume_options;
     relaxed.relaxation = Grid_relaxation_options();
     relaxed.relaxation.maximum_sweeps = sweeps;
-    Layout_volume_result r;
     model.relaxation_attempted = true;
-    try {
-      stage("volume construction, relaxed grids", [&] { r = layout_volume(model.layout, relaxed); });
-    } catch(const Error& e) {
-      model.warnings.push_back("relaxing the surface grids failed: " + e.reason() + ": " + e.what());
-    }
+    Layout_volume_result r = attempt("volume construction, relaxed grids", relaxed, "relaxing the surface grids");
     const std::size_t before = internal::uncertified_patches(model.volume), after = internal::uncertified_patches(r);
     if(better_than_kept(r)) {
       model.warnings.push_back("the surface grids were relaxed (" + std::to_string(r.relaxation.sweeps) + " sweeps): " +
@@ -268,20 +275,11 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   // (double-torus-example.off is no longer valid at 16 samples).
   const int stretch_rounds = int(option(np, internal_np::stretch_rounds, 3));
   if(stretch_rounds < 0) throw Invalid_input_error("invalid_parameter", "stretch_rounds must not be negative");
-  auto far_from_mesh = [&] {
-    const std::vector<std::string> reasons = model.invalidity_reasons();
-    return std::find(reasons.begin(), reasons.end(), "boundary_distance") != reasons.end();
-  };
   if(stretch_rounds > 0 && model.volume.quality_evaluated && far_from_mesh()) {
     Layout_volume_options stretched = volume_options;
     stretched.sampling.stretch_rounds = stretch_rounds;
-    Layout_volume_result r;
     model.stretch_attempted = true;
-    try {
-      stage("volume construction, stretch-reduced maps", [&] { r = layout_volume(model.layout, stretched); });
-    } catch(const Error& e) {
-      model.warnings.push_back("stretch-reduced maps failed: " + e.reason() + ": " + e.what());
-    }
+    Layout_volume_result r = attempt("volume construction, stretch-reduced maps", stretched, "stretch-reducing the patch maps");
     if(better_than_kept(r)) {
       model.warnings.push_back("the patches' maps were stretch-reduced (" + std::to_string(stretch_rounds) +
                                " rounds): the boundary is " + internal::percent_text(r.distance.relative) +
