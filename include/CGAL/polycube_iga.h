@@ -170,21 +170,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     f();
     model.stage_seconds.push_back({name, std::chrono::duration<double>(clock::now() - t0).count()});
   };
-  Surface_topology_result<TriangleMesh> topology;
-  stage("topology", [&] { topology = Surface_topology<TriangleMesh>()(tm, parameters::compute_tunnel_loops(false)); });
-  for(const auto& w : topology.warnings) model.warnings.push_back(w);
-  stage("cuboid decomposition", [&] {
-    model.layout = Decomposition()(tm, parameters::surface_topology(topology)
-                                         .cut_criterion(option(np, internal_np::cut_criterion, Cut_criterion::LENGTH))
-                                         .symmetry_plane(option(np, internal_np::symmetry_plane, Cut_criterion_options().symmetry_plane))
-                                         .criterion_strength(option(np, internal_np::criterion_strength, 1.0))
-                                         .maximum_refinements(option(np, internal_np::maximum_refinements, 2)));
-  });
-  if(model.layout.turned_outwards)
-    model.warnings.push_back("the input's faces point into the solid; the layout and the volume use them turned outwards");
-  stage("layout validation", [&] { model.layout_validation = model.layout.validate(); });
-  if(!model.layout_validation.is_valid())
-    throw Internal_error("invalid_layout", "the polycube layout violates an invariant: " + model.layout_validation.problems.front());
+  // Options first: a bad one is rejected before any work.
   // A boundary layer by default (Layout_padding.h): without it, cuboid edges on a smooth
   // surface have det J -> 0.
   Layout_volume_options volume_defaults;
@@ -202,16 +188,30 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   const bool untangle = volume_options.untangle;
   volume_options.untangle = false;
   model.maximum_boundary_distance = option(np, internal_np::maximum_boundary_distance, 0.02);
-  stage("volume construction", [&] { model.volume = layout_volume(model.layout, volume_options); });
-  model.grid_attempts.push_back(volume_options.sampling.grid_segments);
-  // An invalid volume is rebuilt on grids twice as fine, up to maximum_grid_resolution (by
-  // default one doubling): more samples and spans give the faces and the untangling room
-  // (the mushroom's cube is valid at 24 and 32 samples per side, not at 16). The first
-  // valid result is kept, else the one at the requested resolution. A missing part of the
-  // shape (femur's shaft) is not retried: no grid brings it back.
   const int maximum_grid = int(option(np, internal_np::maximum_grid_resolution, 2 * volume_options.sampling.grid_segments));
   if(maximum_grid > 1024)
     throw Invalid_input_error("invalid_parameter", "maximum_grid_resolution must be at most 1024 samples per patch side");
+  const int sweeps = int(option(np, internal_np::grid_relaxation_sweeps, 100));
+  if(sweeps < 0) throw Invalid_input_error("invalid_parameter", "grid_relaxation_sweeps must not be negative");
+  const int stretch_rounds = int(option(np, internal_np::stretch_rounds, 3));
+  if(stretch_rounds < 0) throw Invalid_input_error("invalid_parameter", "stretch_rounds must not be negative");
+  Surface_topology_result<TriangleMesh> topology;
+  stage("topology", [&] { topology = Surface_topology<TriangleMesh>()(tm, parameters::compute_tunnel_loops(false)); });
+  for(const auto& w : topology.warnings) model.warnings.push_back(w);
+  stage("cuboid decomposition", [&] {
+    model.layout = Decomposition()(tm, parameters::surface_topology(topology)
+                                         .cut_criterion(option(np, internal_np::cut_criterion, Cut_criterion::LENGTH))
+                                         .symmetry_plane(option(np, internal_np::symmetry_plane, Cut_criterion_options().symmetry_plane))
+                                         .criterion_strength(option(np, internal_np::criterion_strength, 1.0))
+                                         .maximum_refinements(option(np, internal_np::maximum_refinements, 2)));
+  });
+  if(model.layout.turned_outwards)
+    model.warnings.push_back("the input's faces point into the solid; the layout and the volume use them turned outwards");
+  stage("layout validation", [&] { model.layout_validation = model.layout.validate(); });
+  if(!model.layout_validation.is_valid())
+    throw Internal_error("invalid_layout", "the polycube layout violates an invariant: " + model.layout_validation.problems.front());
+  stage("volume construction", [&] { model.volume = layout_volume(model.layout, volume_options); });
+  model.grid_attempts.push_back(volume_options.sampling.grid_segments);
   auto far_from_mesh = [&] {
     const std::vector<std::string> reasons = model.invalidity_reasons();
     return std::find(reasons.begin(), reasons.end(), "boundary_distance") != reasons.end();
@@ -219,13 +219,6 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   auto worth_retrying = [&] {
     return !model.is_valid() && model.volume.quality_evaluated && !(far_from_mesh() && internal::part_missing(model.volume.distance));
   };
-  // An invalid volume is built again with its surface grids relaxed as one quad mesh
-  // (Grid_relaxation.h): that widens sliver patches and unfolds squeezed cells, but moves
-  // grid lines off ridges and tips, so it is a second attempt, kept only when it leaves
-  // fewer patches uncertified. The finer grids below are not relaxed: at 32 samples a relaxed
-  // volume whose det J nears 0 can cost minutes to certify (3holes.obj), for no valid result.
-  const int sweeps = int(option(np, internal_np::grid_relaxation_sweeps, 100));
-  if(sweeps < 0) throw Invalid_input_error("invalid_parameter", "grid_relaxation_sweeps must not be negative");
   // A construction replaces the kept one if it is valid, or leaves fewer patches uncertified
   // without its boundary moving farther off the mesh, or as many and brings a boundary that
   // is too far closer.
@@ -249,6 +242,11 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   };
   std::optional<Layout_volume_result> other; // the construction not chosen, if any
   int other_stretch_rounds = 0;
+  // An invalid volume is built again with its surface grids relaxed as one quad mesh
+  // (Grid_relaxation.h): that widens sliver patches and unfolds squeezed cells, but moves
+  // grid lines off ridges and tips, so it is a second attempt, kept only when it leaves
+  // fewer patches uncertified. The finer grids below are not relaxed: at 32 samples a relaxed
+  // volume whose det J nears 0 can cost minutes to certify (3holes.obj), for no valid result.
   if(sweeps > 0 && worth_retrying()) {
     Layout_volume_options relaxed = volume_options;
     relaxed.relaxation = Grid_relaxation_options();
@@ -273,8 +271,6 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   // (Patch_sampling_options::stretch_rounds), kept on the same terms as the relaxed one.
   // Not for the first construction: on some valid shapes they cost det J
   // (double-torus-example.off is no longer valid at 16 samples).
-  const int stretch_rounds = int(option(np, internal_np::stretch_rounds, 3));
-  if(stretch_rounds < 0) throw Invalid_input_error("invalid_parameter", "stretch_rounds must not be negative");
   if(stretch_rounds > 0 && model.volume.quality_evaluated && far_from_mesh()) {
     Layout_volume_options stretched = volume_options;
     stretched.sampling.stretch_rounds = stretch_rounds;
@@ -314,6 +310,11 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
       }
     }
   }
+  // An invalid volume is rebuilt on grids twice as fine, up to maximum_grid_resolution (by
+  // default one doubling): more samples and spans give the faces and the untangling room
+  // (the mushroom's cube is valid at 24 and 32 samples per side, not at 16). The first
+  // valid result is kept, else the one at the requested resolution. A missing part of the
+  // shape (femur's shaft) is not retried: no grid brings it back.
   for(int N = 2 * volume_options.sampling.grid_segments; N <= maximum_grid && worth_retrying(); N *= 2) {
     Layout_volume_options finer = volume_options;
     finer.sampling.grid_segments = N;

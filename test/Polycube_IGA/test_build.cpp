@@ -217,6 +217,13 @@ TEST_CASE("build stretches the patch maps when a protrusion is missed, and only 
   CHECK(plain.volume.distance.relative > 0.04);
   const std::vector<std::string> reasons = plain.invalidity_reasons();
   CHECK(std::find(reasons.begin(), reasons.end(), "boundary_distance") != reasons.end());
+  // Bad attempt options are rejected before any work: no stage has run when they throw.
+  std::vector<std::string> stages;
+  auto record = [&](const std::string& name) { stages.push_back(name); };
+  CHECK_THROWS_AS(PI::build_trivariate_model(m, PI::parameters::stretch_rounds(-1), record), PI::Invalid_input_error);
+  CHECK_THROWS_AS(PI::build_trivariate_model(m, PI::parameters::grid_relaxation_sweeps(-1), record), PI::Invalid_input_error);
+  CHECK_THROWS_AS(PI::build_trivariate_model(m, PI::parameters::maximum_grid_resolution(2048), record), PI::Invalid_input_error);
+  CHECK(stages.empty());
   // A volume near the mesh is not built again (the torus: valid at once).
   const auto torus = PI::build_trivariate_model(load(data("torus.obj")));
   CHECK_FALSE(torus.stretch_attempted);
