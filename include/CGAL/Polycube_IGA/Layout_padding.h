@@ -151,7 +151,7 @@ public:
       std::vector<typename Fast_mesh::Vertex_index> vs;
       for(auto v : vertices_around_face(halfedge(f, mesh), mesh)) vs.push_back(copy[v]);
       if(fast_mesh_.add_face(vs) == Fast_mesh::null_face()) throw Internal_error("probe_copy_failed", "the surface mesh could not be copied for closest points");
-      normals_.push_back(face_normal(f));
+      normals_.push_back(unit_face_normal(mesh, f));
     }
     fast_tree_ = std::make_unique<Fast_tree>(faces(fast_mesh_).first, faces(fast_mesh_).second, fast_mesh_);
     fast_tree_->accelerate_distance_queries();
@@ -174,7 +174,7 @@ public:
   Eigen::Vector3d closest_face_normal(const Eigen::Vector3d& p) const
   {
     if(faces(mesh_).empty()) return Eigen::Vector3d::Zero();
-    return face_normal(tree_.closest_point_and_primitive(Point(p.x(), p.y(), p.z())).second);
+    return unit_face_normal(mesh_, tree_.closest_point_and_primitive(Point(p.x(), p.y(), p.z())).second);
   }
 
   using Hint = typename Fast_tree::Point_and_primitive_id;
@@ -257,20 +257,6 @@ private:
   {
     const auto& q = h.first;
     return {Eigen::Vector3d(q.x(), q.y(), q.z()), normals_[std::size_t(h.second)], h};
-  }
-
-  template <class Face>
-  Eigen::Vector3d face_normal(Face f) const
-  {
-    std::array<Eigen::Vector3d, 3> x;
-    int k = 0;
-    for(auto v : vertices_around_face(halfedge(f, mesh_), mesh_)) {
-      const Point& q = get(CGAL::vertex_point, mesh_, v);
-      if(k < 3) x[std::size_t(k)] = Eigen::Vector3d(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z()));
-      ++k;
-    }
-    const Eigen::Vector3d n = (x[1] - x[0]).cross(x[2] - x[0]);
-    return n.norm() > 0. ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Zero();
   }
 
   const Mesh& mesh_;

@@ -421,16 +421,22 @@ Surface_patch_map map_surface_patch(const Layout& L, std::size_t p, const std::v
     // square root of the surface-to-square area ratio of its faces, relative to the patch's):
     // row i of sum_j W_ij / (s_i s_j) (uv_i - uv_j) = 0 is Yoshizawa's w_ij / s_j, which
     // pulls a vertex less towards stretched neighbours, so the shrunken region opens up.
+    // Surface areas do not change from round to round; the square's do.
+    std::vector<double> area3(stretch_rounds > 0 ? M.triangles.size() : 0);
+    double total3 = 0.;
+    for(std::size_t f = 0; f < area3.size(); ++f) {
+      const auto& t = M.triangles[f];
+      const Eigen::Vector3d &x0 = M.position[std::size_t(t[0])], &x1 = M.position[std::size_t(t[1])], &x2 = M.position[std::size_t(t[2])];
+      area3[f] = 0.5 * (x1 - x0).cross(x2 - x0).norm();
+      total3 += area3[f];
+    }
     for(int round = 0; round < stretch_rounds; ++round) {
-      std::vector<double> area3(M.triangles.size()), area2(M.triangles.size());
-      double total3 = 0., total2 = 0.;
+      std::vector<double> area2(M.triangles.size());
+      double total2 = 0.;
       for(std::size_t f = 0; f < M.triangles.size(); ++f) {
         const auto& t = M.triangles[f];
-        const Eigen::Vector3d &x0 = M.position[std::size_t(t[0])], &x1 = M.position[std::size_t(t[1])], &x2 = M.position[std::size_t(t[2])];
         const Eigen::Vector2d a = M.uv[std::size_t(t[1])] - M.uv[std::size_t(t[0])], b = M.uv[std::size_t(t[2])] - M.uv[std::size_t(t[0])];
-        area3[f] = 0.5 * (x1 - x0).cross(x2 - x0).norm();
         area2[f] = 0.5 * (a.x() * b.y() - a.y() * b.x());
-        total3 += area3[f];
         total2 += std::max(area2[f], 0.);
       }
       if(!(total3 > 0.) || !(total2 > 0.)) break;

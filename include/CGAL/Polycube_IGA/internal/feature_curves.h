@@ -9,6 +9,8 @@
 #ifndef CGAL_POLYCUBE_IGA_INTERNAL_FEATURE_CURVES_H
 #define CGAL_POLYCUBE_IGA_INTERNAL_FEATURE_CURVES_H
 
+#include <CGAL/Polycube_IGA/internal/triangle_projection.h>
+
 #include <Eigen/Dense>
 
 #include <CGAL/boost/graph/helpers.h>
@@ -29,18 +31,8 @@ namespace internal {
 template <class Mesh>
 std::vector<bool> sharp_edges(const Mesh& m, double angle_degrees)
 {
-  std::vector<Eigen::Vector3d> normal(num_faces(m), Eigen::Vector3d::Zero());
-  for(auto f : faces(m)) {
-    std::array<Eigen::Vector3d, 3> x;
-    std::size_t k = 0;
-    for(auto v : vertices_around_face(halfedge(f, m), m)) {
-      const auto& p = m.point(v);
-      if(k < 3) x[k] = Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
-      ++k;
-    }
-    const Eigen::Vector3d n = (x[1] - x[0]).cross(x[2] - x[0]);
-    if(n.norm() > 0.) normal[std::size_t(f)] = n.normalized();
-  }
+  std::vector<Eigen::Vector3d> normal(num_faces(m));
+  for(auto f : faces(m)) normal[std::size_t(f)] = unit_face_normal(m, f);
   const double c = std::cos(angle_degrees * 3.14159265358979323846 / 180.);
   std::vector<bool> sharp(num_edges(m), false);
   for(auto e : edges(m)) {

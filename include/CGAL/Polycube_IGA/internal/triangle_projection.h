@@ -1,14 +1,17 @@
 // Copyright (c) 2026 Polycube_IGA contributors.
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// The point of a triangle closest to a point, and which feature of the triangle (inside, an
-// edge, a vertex) holds it: a walk over a mesh towards a closest point (Mesh_probe in
+// The unit normal of a mesh face, and the point of a triangle closest to a point with the
+// feature of the triangle (inside, an edge, a vertex) that holds it: a walk over a mesh towards a closest point (Mesh_probe in
 // Layout_padding.h) needs the feature to know which neighbouring faces may be closer.
 // Regions by the signs of dot products against the edges (Voronoi regions of the
 // features), in doubles.
 
 #ifndef CGAL_POLYCUBE_IGA_INTERNAL_TRIANGLE_PROJECTION_H
 #define CGAL_POLYCUBE_IGA_INTERNAL_TRIANGLE_PROJECTION_H
+
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/number_utils.h>
 
 #include <Eigen/Dense>
 
@@ -17,6 +20,22 @@
 namespace CGAL {
 namespace Polycube_IGA {
 namespace internal {
+
+/// The unit normal of face `f` of `m` from its first three vertices (the mesh's orientation);
+/// zero for a face without area.
+template <class Mesh, class Face>
+Eigen::Vector3d unit_face_normal(const Mesh& m, Face f)
+{
+  std::array<Eigen::Vector3d, 3> x;
+  std::size_t k = 0;
+  for(auto v : vertices_around_face(halfedge(f, m), m)) {
+    const auto& q = get(CGAL::vertex_point, m, v);
+    if(k < 3) x[k] = Eigen::Vector3d(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z()));
+    ++k;
+  }
+  const Eigen::Vector3d n = (x[1] - x[0]).cross(x[2] - x[0]);
+  return n.norm() > 0. ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::Zero();
+}
 
 /// The closest point of a triangle t[0] t[1] t[2], on vertex k (`vertex` = k), on edge
 /// t[k] t[k+1 mod 3] (`edge` = k), or inside (both -1).
