@@ -242,6 +242,8 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   };
   std::optional<Layout_volume_result> other; // the construction not chosen, if any
   int other_stretch_rounds = 0;
+  // Whether each attempt served its end, kept or not: the finer grids combine those that did.
+  bool relaxation_helped = false, stretch_helped = false;
   // An invalid volume is built again with its surface grids relaxed as one quad mesh
   // (Grid_relaxation.h): that widens sliver patches and unfolds squeezed cells, but moves
   // grid lines off ridges and tips, so it is a second attempt, kept only when it leaves
@@ -254,6 +256,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     model.relaxation_attempted = true;
     Layout_volume_result r = attempt("volume construction, relaxed grids", relaxed, "relaxing the surface grids");
     const std::size_t before = internal::uncertified_patches(model.volume), after = internal::uncertified_patches(r);
+    relaxation_helped = r.quality_evaluated && after <= before;
     if(better_than_kept(r)) {
       model.warnings.push_back("the surface grids were relaxed (" + std::to_string(r.relaxation.sweeps) + " sweeps): " +
                                std::to_string(after) + " patches not certified instead of " + std::to_string(before) +
@@ -276,6 +279,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     stretched.sampling.stretch_rounds = stretch_rounds;
     model.stretch_attempted = true;
     Layout_volume_result r = attempt("volume construction, stretch-reduced maps", stretched, "stretch-reducing the patch maps");
+    stretch_helped = r.quality_evaluated && r.distance.relative < model.volume.distance.relative;
     if(better_than_kept(r)) {
       model.warnings.push_back("the patches' maps were stretch-reduced (" + std::to_string(stretch_rounds) +
                                " rounds): the boundary is " + internal::percent_text(r.distance.relative) +
@@ -315,30 +319,40 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   // (the mushroom's cube is valid at 24 and 32 samples per side, not at 16). The first
   // valid result is kept, else the one at the requested resolution. A missing part of the
   // shape (femur's shaft) is not retried: no grid brings it back.
+  // The finer grids combine the attempts above that served their ends: relaxed grids if they
+  // left no more patches uncertified, stretch-reduced maps if they brought the boundary
+  // closer. Three femurs of population/femur (S001, S003, S004) are valid so, and not with
+  // either alone; the mushroom at 8 samples, whose relaxed grids leave more patches
+  // uncertified, is valid at 16 only unrelaxed.
   for(int N = 2 * volume_options.sampling.grid_segments; N <= maximum_grid && worth_retrying(); N *= 2) {
     Layout_volume_options finer = volume_options;
     finer.sampling.grid_segments = N;
-    // Twice the spans: 8 times the control points and samples per patch. A quarter of the
-    // control-point budget per doubling keeps the finer untangling within minutes.
-    finer.untangle = untangle;
-    finer.untangling.maximum_control_points = volume_options.untangling.maximum_control_points * std::size_t(volume_options.sampling.grid_segments) *
-                                              std::size_t(volume_options.sampling.grid_segments) / (std::size_t(N) * std::size_t(N));
-    Layout_volume_result r;
+    if(relaxation_helped) {
+      finer.relaxation = Grid_relaxation_options();
+      finer.relaxation.maximum_sweeps = sweeps;
+    }
+    if(stretch_helped) finer.sampling.stretch_rounds = stretch_rounds;
     model.grid_attempts.push_back(N);
     // The retry is a bonus: if the finer grid cannot be built (a stage rejects its grids),
     // the first volume stands.
-    try {
-      stage("volume construction, grid " + std::to_string(N), [&] { r = layout_volume(model.layout, finer); });
-    } catch(const Error& e) {
-      model.warnings.push_back("a grid of " + std::to_string(N) + " samples per patch side was tried too and failed: " +
-                               e.reason() + ": " + e.what());
-      break;
+    Layout_volume_result r = attempt("volume construction, grid " + std::to_string(N), finer,
+                                     "a grid of " + std::to_string(N) + " samples per patch side");
+    if(!r.quality_evaluated) break;
+    // Only a valid finer volume is kept, so it is untangled only if it can become valid: its
+    // boundary, which untangling does not move, is near enough and faces the mesh, and no
+    // patch is pinned (the untangler stops when it finds one). Twice the spans give 8 times
+    // the control points per patch, so the same budget admits an eighth of the patches.
+    std::vector<std::string> reasons = internal::invalidity_reasons(r, model.maximum_boundary_distance);
+    if(untangle && !reasons.empty() && r.distance.relative <= model.maximum_boundary_distance && r.distance.folded_sides.empty()) {
+      finer.untangling.stop_when_pinned = true;
+      stage("volume untangling, grid " + std::to_string(N), [&] { untangle_layout_volume(model.layout, r, finer); });
+      reasons = internal::invalidity_reasons(r, model.maximum_boundary_distance);
     }
-    const std::vector<std::string> reasons = internal::invalidity_reasons(r, model.maximum_boundary_distance);
     if(reasons.empty()) {
       model.warnings.push_back("the volume is built on a grid of " + std::to_string(N) + " samples per patch side: at " +
                                std::to_string(model.volume.samples.segments) + " it was not valid");
       model.volume = std::move(r);
+      model.stretch_rounds = finer.sampling.stretch_rounds;
     } else {
       std::string why;
       for(const auto& x : reasons) why += (why.empty() ? "" : ", ") + x;

@@ -251,6 +251,37 @@ TEST_CASE("untangling spends no rounds on a fold that only fixed points determin
   for(int s = 1; s <= 6; ++s) CHECK(boundary_points_equal(mv.patch(0), v, s));
 }
 
+TEST_CASE("untangling asked to stop when a patch is pinned moves nothing, even where it could repair", "[untangling]")
+{
+  // Patch 0 is pinned (its fold is on an edge of two boundary sides, as above); patch 1 has
+  // an inner fold that untangling repairs. A caller that keeps the volume only if every patch
+  // ends certified (build's finer grids) loses nothing by stopping at the pinned one.
+  PI::Multipatch_volume mv;
+  PI::Tensor_bspline_volume pinned = box(0.), folded = box(2.);
+  pinned.control_point({{1, 0, 0}}).x() += 0.8;
+  fold(folded, 1, 0.9);
+  mv.add_patch(pinned);
+  mv.add_patch(folded);
+  add_all_boundaries(mv, 0);
+  add_all_boundaries(mv, 1);
+  PI::Multipatch_volume repaired = mv;
+  const PI::Volume_untangling_result go_on = PI::untangle_volume(repaired);
+  CHECK(go_on.pinned_patches == std::vector<std::size_t>{0});
+  CHECK(go_on.rounds > 0);
+  CHECK(PI::certified_jacobian_bound(repaired.patch(1)).certified_positive);
+  PI::Volume_untangling_options o;
+  o.stop_when_pinned = true;
+  const PI::Volume_untangling_result r = PI::untangle_volume(mv, o);
+  CHECK(r.patches == std::vector<std::size_t>{0, 1});
+  CHECK(r.pinned_patches == std::vector<std::size_t>{0});
+  CHECK(r.rounds == 0);
+  CHECK(r.reverted);
+  CHECK_FALSE(r.positive_at_samples);
+  CHECK(r.min_relative_determinant_after == r.min_relative_determinant_before);
+  CHECK(mv.patch(0).control_points() == pinned.control_points());
+  CHECK(mv.patch(1).control_points() == folded.control_points());
+}
+
 TEST_CASE("untangling takes a patch positive at every sample but folded between them", "[untangling]")
 {
   // One span: the inner point (1, 1, 1) pushed 1.8 along -x folds the map near that corner,

@@ -66,6 +66,10 @@ struct Volume_untangling_options
   /// (eight: 0.071 against 0.039); 0.7 and 0.9 save one or two more rounds.
   double minimum_decrease = 0.5;
   int iterations_per_round = 100;   ///< L-BFGS iterations per round
+  /// For a caller that keeps the volume only if every patch ends certified (the finer grids
+  /// of build_trivariate_model()): a pinned patch rules that out, so with this set
+  /// untangle_volume() stops before its rounds, `reverted`, the volume unchanged.
+  bool stop_when_pinned = false;
 };
 
 /// What untangle_volume() did.
@@ -584,6 +588,11 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
 
   const Smallest before_rounds = measure(x, &r.pinned_patches);
   r.min_relative_determinant_before = before_rounds.all;
+  if(o.stop_when_pinned && !r.pinned_patches.empty()) {
+    r.min_relative_determinant_after = before_rounds.all;
+    r.reverted = true;
+    return r;
+  }
   min_det = before_rounds.movable;
   run_rounds();
   // Samples are not a certificate: det J can dip below 0 between them (3holes.obj: one core
