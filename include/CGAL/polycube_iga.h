@@ -349,10 +349,22 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     // patch is pinned (the untangler stops when it finds one). Twice the spans give 8 times
     // the control points per patch, so the same budget admits an eighth of the patches.
     std::vector<std::string> reasons = internal::invalidity_reasons(r, model.maximum_boundary_distance);
-    if(untangle && !reasons.empty() && r.distance.relative <= model.maximum_boundary_distance && r.distance.folded_sides.empty()) {
-      finer.untangling.stop_when_pinned = true;
-      stage("volume untangling, grid " + std::to_string(N), [&] { untangle_layout_volume(model.layout, r, finer); });
-      reasons = internal::invalidity_reasons(r, model.maximum_boundary_distance);
+    std::string not_untangled; // why not, for the warning
+    if(untangle && !reasons.empty()) {
+      if(!(r.distance.relative <= model.maximum_boundary_distance))
+        not_untangled = "its boundary is " + internal::percent_text(r.distance.relative) + " of the diagonal from the mesh";
+      else if(!r.distance.folded_sides.empty())
+        not_untangled = "a boundary side turns over";
+      else {
+        finer.untangling.stop_when_pinned = true;
+        stage("volume untangling, grid " + std::to_string(N), [&] { untangle_layout_volume(model.layout, r, finer); });
+        reasons = internal::invalidity_reasons(r, model.maximum_boundary_distance);
+        if(r.untangling.rounds == 0 && !r.untangling.pinned_patches.empty()) {
+          not_untangled = "patches";
+          for(std::size_t c : r.untangling.pinned_patches) not_untangled += " " + std::to_string(c);
+          not_untangled += " are pinned (det J <= 0 where only the fitted boundary sides set it)";
+        }
+      }
     }
     if(reasons.empty()) {
       model.warnings.push_back("the volume is built on a grid of " + std::to_string(N) + " samples per patch side: at " +
@@ -363,7 +375,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
       std::string why;
       for(const auto& x : reasons) why += (why.empty() ? "" : ", ") + x;
       model.warnings.push_back("a grid of " + std::to_string(N) + " samples per patch side was tried too and is not valid either (" +
-                               why + ")");
+                               why + ")" + (not_untangled.empty() ? "" : "; not untangled: " + not_untangled));
     }
   }
   for(std::size_t p = 0; p < model.volume.samples.flipped_triangles.size(); ++p)

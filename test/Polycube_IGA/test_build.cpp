@@ -225,6 +225,25 @@ TEST_CASE("build's finer grid combines the relaxed grids and stretch-reduced map
   CHECK(said);
 }
 
+TEST_CASE("build does not untangle a finer grid that cannot become valid, and says why", "[build]")
+{
+  // head.off at 8 samples, retried at 16: a fitted boundary side of the finer volume turns
+  // over, which no untangling repairs, and only a valid finer volume would be kept.
+  const Mesh m = load(data("head.off"));
+  std::vector<std::string> stages;
+  const auto model = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).maximum_grid_resolution(16),
+                                                [&](const std::string& s) { stages.push_back(s); });
+  REQUIRE(model.grid_attempts == std::vector<int>{8, 16});
+  CHECK_FALSE(model.is_valid());
+  CHECK(model.volume.samples.segments == 8);
+  CHECK(std::count(stages.begin(), stages.end(), "volume construction, grid 16") == 1);
+  CHECK(std::count(stages.begin(), stages.end(), "volume untangling, grid 16") == 0);
+  bool said = false;
+  for(const auto& w : model.warnings)
+    said = said || (w.find("grid of 16") != std::string::npos && w.find("not untangled: a boundary side turns over") != std::string::npos);
+  CHECK(said);
+}
+
 TEST_CASE("build stretches the patch maps when a protrusion is missed, and only then", "[build][stretch]")
 {
   // maxFace.obj: the nose of the face mask is 4.3% of the diagonal off the plain volume.
