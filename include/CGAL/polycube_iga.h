@@ -242,6 +242,11 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     }
     return r;
   };
+  auto patch_list = [](const std::vector<std::size_t>& patches) {
+    std::string list;
+    for(std::size_t c : patches) list += (list.empty() ? "" : ", ") + std::to_string(c);
+    return list;
+  };
   std::optional<Layout_volume_result> other; // the construction not chosen, if any
   int other_stretch_rounds = 0;
   // Whether each attempt served its end, kept or not: the finer grids combine those that did.
@@ -359,11 +364,8 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
         finer.untangling.stop_when_pinned = true;
         stage("volume untangling, grid " + std::to_string(N), [&] { untangle_layout_volume(model.layout, r, finer); });
         reasons = internal::invalidity_reasons(r, model.maximum_boundary_distance);
-        if(r.untangling.rounds == 0 && !r.untangling.pinned_patches.empty()) {
-          not_untangled = "patches";
-          for(std::size_t c : r.untangling.pinned_patches) not_untangled += " " + std::to_string(c);
-          not_untangled += " are pinned (det J <= 0 where only the fitted boundary sides set it)";
-        }
+        if(r.untangling.rounds == 0 && !r.untangling.pinned_patches.empty())
+          not_untangled = "patches " + patch_list(r.untangling.pinned_patches) + " are pinned (det J <= 0 where only the fitted boundary sides set it)";
       }
     }
     if(reasons.empty()) {
@@ -394,9 +396,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
                              std::to_string(u.min_relative_determinant_after) + ", was " +
                              std::to_string(u.min_relative_determinant_before) + ")");
   if(!u.skipped && !u.pinned_patches.empty()) {
-    std::string list;
-    for(std::size_t c : u.pinned_patches) list += (list.empty() ? "" : ", ") + std::to_string(c);
-    model.warnings.push_back("volume patches " + list +
+    model.warnings.push_back("volume patches " + patch_list(u.pinned_patches) +
                              ": det J <= 0 where only fixed control points (the fitted boundary sides) set it; "
                              "untangling cannot reach there");
   }
