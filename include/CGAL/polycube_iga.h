@@ -254,12 +254,12 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   // An invalid volume is built again with its surface grids relaxed as one quad mesh
   // (Grid_relaxation.h): that widens sliver patches and unfolds squeezed cells, but moves
   // grid lines off ridges and tips, so it is a second attempt, kept only when it leaves
-  // fewer patches uncertified. The finer grids below are not relaxed: at 32 samples a relaxed
-  // volume whose det J nears 0 can cost minutes to certify (3holes.obj), for no valid result.
+  // fewer patches uncertified. The finer grids below are relaxed only if it served here.
+  Grid_relaxation_options relaxation;
+  relaxation.maximum_sweeps = sweeps;
   if(sweeps > 0 && worth_retrying()) {
     Layout_volume_options relaxed = volume_options;
-    relaxed.relaxation = Grid_relaxation_options();
-    relaxed.relaxation.maximum_sweeps = sweeps;
+    relaxed.relaxation = relaxation;
     model.relaxation_attempted = true;
     Layout_volume_result r = attempt("volume construction, relaxed grids", relaxed, "relaxing the surface grids");
     const std::size_t before = internal::uncertified_patches(model.volume), after = internal::uncertified_patches(r);
@@ -334,10 +334,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   for(int N = 2 * volume_options.sampling.grid_segments; N <= maximum_grid && worth_retrying(); N *= 2) {
     Layout_volume_options finer = volume_options;
     finer.sampling.grid_segments = N;
-    if(relaxation_helped) {
-      finer.relaxation = Grid_relaxation_options();
-      finer.relaxation.maximum_sweeps = sweeps;
-    }
+    if(relaxation_helped) finer.relaxation = relaxation;
     // Twice the rounds per doubling: the finer grid follows the opened-up map with its finer
     // faces. Femurs S002 and S006 come within 2% of the diagonal at 32 samples with 6 rounds
     // (1.93%, 1.58%), not with 3 (2.42%, 2.16%).
