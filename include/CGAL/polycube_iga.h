@@ -152,7 +152,9 @@ struct Trivariate_model
 /// `maximum_boundary_distance` (0.02: the model is
 /// not valid when its boundary is farther from the mesh than this fraction of the mesh's
 /// bounding-box diagonal) and `maximum_grid_resolution` (twice grid_resolution: an invalid
-/// volume is rebuilt on grids twice as fine up to this; equal to grid_resolution, never).
+/// volume is rebuilt on grids twice as fine up to this; equal to grid_resolution, never) and
+/// `minimum_grid_resolution` (half grid_resolution if that is 8 or more, else
+/// grid_resolution: a volume still invalid is then rebuilt on grids half as fine down to this).
 /// `grid_relaxation_sweeps` (100) and `stretch_rounds` (3) are those of the second and third
 /// attempts: relaxed surface grids when the first volume is invalid, stretch-reduced patch
 /// maps when the volume is then too far from the mesh (0: no such attempt). The finer grids
@@ -193,6 +195,11 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   const int maximum_grid = int(option(np, internal_np::maximum_grid_resolution, 2 * volume_options.sampling.grid_segments));
   if(maximum_grid > 1024)
     throw Invalid_input_error("invalid_parameter", "maximum_grid_resolution must be at most 1024 samples per patch side");
+  const int half_grid = volume_options.sampling.grid_segments / 2;
+  const int minimum_grid = int(option(np, internal_np::minimum_grid_resolution,
+                                      half_grid >= 8 ? half_grid : volume_options.sampling.grid_segments));
+  if(minimum_grid < 2)
+    throw Invalid_input_error("invalid_parameter", "minimum_grid_resolution must be at least 2 samples per patch side");
   const int sweeps = int(option(np, internal_np::grid_relaxation_sweeps, 100));
   if(sweeps < 0) throw Invalid_input_error("invalid_parameter", "grid_relaxation_sweeps must not be negative");
   const int stretch_rounds = int(option(np, internal_np::stretch_rounds, 3));
@@ -321,34 +328,40 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
       }
     }
   }
-  // An invalid volume is rebuilt on grids twice as fine, up to maximum_grid_resolution (by
-  // default one doubling): more samples and spans give the faces and the untangling room
-  // (the mushroom's cube is valid at 24 and 32 samples per side, not at 16). The first
-  // valid result is kept, else the one at the requested resolution. A missing part of the
-  // shape (femur's shaft) is not retried: no grid brings it back.
-  // The finer grids combine the attempts above that served their ends: relaxed grids if they
+  // An invalid volume is rebuilt on another grid, kept only if valid. First on grids twice
+  // as fine, up to maximum_grid_resolution (by default one doubling): more samples and spans
+  // give the faces and the untangling room (the mushroom's cube is valid at 24 and 32
+  // samples per side, not at 16). Then on one grid half as fine, down to
+  // minimum_grid_resolution (by default half the grid, if that is 8 or more): fewer spans
+  // give smoother cuboids with fewer control points to untangle, which is what the many
+  // curved cuboids of high genus need (the genus-5 and genus-6 chains of tori in the test
+  // data are valid at 8 samples, not at 16 or 32). A missing part of the shape (femur's
+  // shaft) is not retried: no grid brings it back.
+  // The other grids combine the attempts above that served their ends: relaxed grids if they
   // left no more patches uncertified, stretch-reduced maps if they brought the boundary
   // closer. 27 of the 30 femurs of population/femur are valid so at 32 samples, none with
   // the plain finer grid; the mushroom at 8 samples, whose relaxed grids leave more patches
   // uncertified, is valid at 16 only unrelaxed.
-  for(int N = 2 * volume_options.sampling.grid_segments; N <= maximum_grid && worth_retrying(); N *= 2) {
-    Layout_volume_options finer = volume_options;
-    finer.sampling.grid_segments = N;
-    if(relaxation_helped) finer.relaxation = relaxation;
+  const int first_grid = volume_options.sampling.grid_segments;
+  // Returns false when the grid could not be built (a stage rejects its grids): the retry is
+  // a bonus, the first volume stands.
+  auto retry_on_grid = [&](int N) {
+    Layout_volume_options other_grid = volume_options;
+    other_grid.sampling.grid_segments = N;
+    if(relaxation_helped) other_grid.relaxation = relaxation;
     // Four times the rounds per doubling: the finer grid follows the opened-up map with its
     // finer faces. Of the 30 femurs, 27 are valid at 32 samples with 12 rounds (S005 and S027
-    // within 1.92% and 1.99% of the diagonal), 25 with 6, 21 with 3.
+    // within 1.92% and 1.99% of the diagonal), 25 with 6, 21 with 3. A coarser grid keeps
+    // the first grid's rounds.
     if(stretch_helped || volume_options.sampling.stretch_rounds > 0) {
-      const int ratio = N / volume_options.sampling.grid_segments;
-      finer.sampling.stretch_rounds = stretch_rounds * ratio * ratio;
+      const int ratio = std::max(1, N / first_grid);
+      other_grid.sampling.stretch_rounds = stretch_rounds * ratio * ratio;
     }
     model.grid_attempts.push_back(N);
-    // The retry is a bonus: if the finer grid cannot be built (a stage rejects its grids),
-    // the first volume stands.
-    Layout_volume_result r = attempt("volume construction, grid " + std::to_string(N), finer,
+    Layout_volume_result r = attempt("volume construction, grid " + std::to_string(N), other_grid,
                                      "a grid of " + std::to_string(N) + " samples per patch side");
-    if(!r.quality_evaluated) break;
-    // Only a valid finer volume is kept, so it is untangled only if it can become valid: its
+    if(!r.quality_evaluated) return false;
+    // Only a valid volume is kept, so it is untangled only if it can become valid: its
     // boundary, which untangling does not move, is near enough and faces the mesh, and no
     // patch is pinned (the untangler stops when it finds one). Twice the spans give 8 times
     // the control points per patch, so the same budget admits an eighth of the patches.
@@ -360,10 +373,13 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
       else if(!r.distance.folded_sides.empty())
         not_untangled = "a boundary side turns over";
       else {
-        finer.untangling.stop_when_pinned = true;
-        stage("volume untangling, grid " + std::to_string(N), [&] { untangle_layout_volume(model.layout, r, finer); });
+        other_grid.untangling.stop_when_pinned = true;
+        stage("volume untangling, grid " + std::to_string(N), [&] { untangle_layout_volume(model.layout, r, other_grid); });
         reasons = internal::invalidity_reasons(r, model.maximum_boundary_distance);
-        if(r.untangling.rounds == 0 && !r.untangling.pinned_patches.empty())
+        if(r.untangling.skipped)
+          not_untangled = std::to_string(r.untangling.patches.size()) +
+                          " patches need it, more than the cost guards allow at this grid";
+        else if(r.untangling.rounds == 0 && !r.untangling.pinned_patches.empty())
           not_untangled = "patches " + patch_list(r.untangling.pinned_patches) + " are pinned (det J <= 0 where only the fitted boundary sides set it)";
       }
     }
@@ -371,14 +387,19 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
       model.warnings.push_back("the volume is built on a grid of " + std::to_string(N) + " samples per patch side: at " +
                                std::to_string(model.volume.samples.segments) + " it was not valid");
       model.volume = std::move(r);
-      model.stretch_rounds = finer.sampling.stretch_rounds;
+      model.stretch_rounds = other_grid.sampling.stretch_rounds;
     } else {
       std::string why;
       for(const auto& x : reasons) why += (why.empty() ? "" : ", ") + x;
       model.warnings.push_back("a grid of " + std::to_string(N) + " samples per patch side was tried too and is not valid either (" +
                                why + ")" + (not_untangled.empty() ? "" : "; not untangled: " + not_untangled));
     }
-  }
+    return true;
+  };
+  for(int N = 2 * first_grid; N <= maximum_grid && worth_retrying(); N *= 2)
+    if(!retry_on_grid(N)) break;
+  for(int N = first_grid / 2; N >= minimum_grid && worth_retrying(); N /= 2)
+    if(!retry_on_grid(N)) break;
   for(std::size_t p = 0; p < model.volume.samples.flipped_triangles.size(); ++p)
     if(model.volume.samples.flipped_triangles[p] > 0)
       model.warnings.push_back("patch " + std::to_string(p) + ": " + std::to_string(model.volume.samples.flipped_triangles[p]) +

@@ -122,6 +122,9 @@ TEST_CASE("build CLI rejects bad input and bad options without writing", "[build
   r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --grid 16 --max-grid 8");
   CHECK(r.exit_code == 2);
   CHECK(r.err.find("--max-grid") != std::string::npos);
+  r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --grid 16 --min-grid 32");
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("--min-grid") != std::string::npos);
   r = run_cli("build '" + data("torus.obj") + "'");
   CHECK(r.exit_code == 2);
   CHECK(!exists(xml));
@@ -183,6 +186,48 @@ TEST_CASE("build gives a certified valid volume for a torus", "[build]")
       CHECK(level > 0);
     }
   }
+}
+
+TEST_CASE("build gives certified valid volumes for a bent tube and a Y bifurcation", "[build]")
+{
+  // The cylinder and pants classes on smooth tubes with planar cut ends (a quarter-circle
+  // tube; a trunk splitting into two branches, as an aorta into the iliac arteries).
+  struct Case { const char* name; PI::Layout_class cls; std::size_t loops, cuboids; };
+  for(const Case& c : {Case{"bent_tube.off", PI::Layout_class::cylinder, 2, 0}, Case{"ybranch.off", PI::Layout_class::pants, 3, 4}}) {
+    INFO(c.name);
+    const auto model = PI::build_trivariate_model(load(data(c.name)));
+    CHECK(model.layout.layout_class == c.cls);
+    CHECK(model.layout.boundary_loops == c.loops);
+    if(c.cuboids > 0) CHECK(model.layout.cuboids.size() == c.cuboids); // 4 (2g + b - 2) on the pants path
+    CHECK(model.grid_attempts == std::vector<int>{16});
+    REQUIRE(model.is_valid());
+    for(const auto& b : model.volume.quality.certified) CHECK(b.lower_bound > 0.);
+    CHECK(model.volume.quality.overall_sampled.min_scaled_jacobian > 0.1);
+    CHECK(model.volume.distance.relative < 0.02);
+    CHECK(model.volume.quality.interfaces.conforming);
+  }
+}
+
+TEST_CASE("build falls back to a coarser grid when the finer one is not valid either", "[build]")
+{
+  // The Y bifurcation cut by deleting faces: its boundary loops zigzag, and at 16 samples the
+  // slab at one corner on a tooth turns its boundary side over (no untangling repairs that).
+  // At 8 samples the volume is valid.
+  const Mesh m = load(data("ybranch_jagged.off"));
+  const auto model = PI::build_trivariate_model(m, PI::parameters::maximum_grid_resolution(16));
+  CHECK(model.grid_attempts == std::vector<int>{16, 8});
+  REQUIRE(model.is_valid());
+  CHECK(model.volume.samples.segments == 8);
+  for(const auto& b : model.volume.quality.certified) CHECK(b.lower_bound > 0.);
+  CHECK(model.volume.distance.relative < 0.02);
+  bool said = false;
+  for(const auto& w : model.warnings) said = said || w.find("built on a grid of 8 samples per patch side: at 16 it was not valid") != std::string::npos;
+  CHECK(said);
+  // minimum_grid_resolution equal to the grid: no coarser attempt.
+  const auto fixed = PI::build_trivariate_model(m, PI::parameters::maximum_grid_resolution(16).minimum_grid_resolution(16));
+  CHECK(fixed.grid_attempts == std::vector<int>{16});
+  CHECK_FALSE(fixed.is_valid());
+  CHECK_THROWS_AS(PI::build_trivariate_model(m, PI::parameters::minimum_grid_resolution(1)), PI::Invalid_input_error);
 }
 
 TEST_CASE("build turns a box into a certified valid volume that is the box", "[build][features]")

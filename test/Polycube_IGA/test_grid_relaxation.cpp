@@ -171,7 +171,7 @@ TEST_CASE("grid relaxation keeps boundary loops and, if asked, nodes in place", 
 TEST_CASE("build relaxes the grids of an invalid volume and keeps them only when fewer patches fail", "[grid_relaxation][build]")
 {
   const Mesh m = load(data("eight.off"));
-  const auto plain = PI::build_trivariate_model(m, PI::parameters::maximum_grid_resolution(16).grid_relaxation_sweeps(0));
+  const auto plain = PI::build_trivariate_model(m, PI::parameters::maximum_grid_resolution(16).minimum_grid_resolution(16).grid_relaxation_sweeps(0));
   REQUIRE_FALSE(plain.is_valid());
   CHECK_FALSE(plain.relaxation_attempted);
   CHECK(plain.volume.relaxation.sweeps == 0);

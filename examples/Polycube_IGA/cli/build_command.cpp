@@ -153,7 +153,7 @@ int run_build(const Arguments& args)
   Parsed_arguments a(args, {"--merge-duplicates", "--drop-isolated", "--no-self-intersection-test", "--allow-invalid", "--quiet",
                       "--no-untangle"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
-                      "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--relax-sweeps", "--stretch-rounds"});
+                      "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--relax-sweeps", "--stretch-rounds"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
   if(out.empty()) throw PI::Invalid_input_error("bad_arguments", "build needs -o OUT.xml");
@@ -164,6 +164,7 @@ int run_build(const Arguments& args)
   const double max_distance = fraction_option(a, "--max-distance", 0.02, 0., 1.);
   const int refinements = positive_option(a, "--max-refinements", 2, 0, 5);
   const int max_grid = positive_option(a, "--max-grid", std::min(2 * grid, 512), grid, 512);
+  const int min_grid = positive_option(a, "--min-grid", grid / 2 >= 8 ? grid / 2 : grid, 2, grid);
   const int sweeps = positive_option(a, "--relax-sweeps", 100, 0, 100000);
   const int stretch = positive_option(a, "--stretch-rounds", 3, 0, 100);
   const bool verbose = !a.has("--quiet") && isatty(2);
@@ -179,7 +180,8 @@ int run_build(const Arguments& args)
   const auto model = PI::build_trivariate_model(
     in.mesh, PI::parameters::grid_resolution(grid).spline_degree(degree).cut_criterion(criterion).boundary_layer(layer)
       .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
-      .maximum_refinements(refinements).maximum_grid_resolution(max_grid).grid_relaxation_sweeps(sweeps).stretch_rounds(stretch),
+      .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid)
+      .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch),
     progress);
 
   const bool write_volume = model.is_valid() || a.has("--allow-invalid");
@@ -219,7 +221,7 @@ Register_command build_command("build", {
   "usage: polycube_iga build MESH -o OUT.xml [--vtu OUT.vtu] [--layout-vtu L.vtu] [--layout-json L.json]\n"
   "                          [--report R.json] [--grid N] [--degree P] [--criterion length|minima|symmetry]\n"
   "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--max-grid M]\n"
-  "                          [--relax-sweeps S] [--stretch-rounds R] [--no-untangle] [--allow-invalid]\n"
+  "                          [--min-grid M] [--relax-sweeps S] [--stretch-rounds R] [--no-untangle] [--allow-invalid]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
   "  --layout-vtu L    the polycube layout on the surface: patches, arcs, nodes\n"
@@ -229,9 +231,13 @@ Register_command build_command("build", {
   "  --grid N          samples per patch side (default 16)   --degree P  spline degree (default 3)\n"
   "  --max-grid M      if the volume is not valid, rebuild it with 2N, 4N, ... samples up to M\n"
   "                    (default 2N; M = N never retries); the first valid one is written\n"
+  "  --min-grid M      if it is still not valid, rebuild it with N/2, N/4, ... samples down to M\n"
+  "                    (default N/2 when that is 8 or more, else N: never); fewer spans give\n"
+  "                    smoother cuboids with fewer control points to untangle (high genus)\n"
   "  --relax-sweeps S  if the volume is not valid, build it again with the surface grids relaxed\n"
   "                    as one quad mesh on the surface (S sweeps, default 100; 0: never) and keep\n"
-  "                    it if fewer patches are left uncertified (finer grids are not relaxed)\n"
+  "                    it if fewer patches are left uncertified (the other grids are relaxed if\n"
+  "                    it left no more patches uncertified)\n"
   "  --stretch-rounds R  if the boundary is then farther from the mesh than --max-distance, build\n"
   "                    it again from patch maps with R rounds of stretch reduction (default 3;\n"
   "                    0: never), which give protrusions their share of the grid; kept if better\n"

@@ -51,7 +51,8 @@ namespace Polycube_IGA {
   X(untangle_volume_t, untangle_volume)                                             \
   X(grid_relaxation_sweeps_t, grid_relaxation_sweeps)                               \
   X(maximum_boundary_distance_t, maximum_boundary_distance)                         \
-  X(maximum_grid_resolution_t, maximum_grid_resolution)
+  X(maximum_grid_resolution_t, maximum_grid_resolution)                             \
+  X(minimum_grid_resolution_t, minimum_grid_resolution)
 
 namespace internal_np {
 #define CGAL_POLYCUBE_IGA_DECLARE_TAG(TAG, NAME) enum TAG { NAME };
