@@ -123,6 +123,42 @@ inline std::size_t at_arc_length(const std::vector<double>& s, std::size_t from,
   return best;
 }
 
+/// The loop vertex within `window` of arc length of `at` where the loop runs straightest in
+/// the surface's tangent plane, when the loop turns by more than 30 degrees at `at`; else
+/// `at`. A corner on a tooth of a zigzag boundary (a mesh cut by deleting faces) gives its
+/// patch a corner far from a right angle, and the slab under it a boundary side that turns
+/// over (ybranch_jagged.off at 16 samples).
+template <class P>
+std::size_t straightest_near(const Mesh_graph<Piece_mesh<P>>& g, const std::vector<Eigen::Vector3d>& normal,
+                             const std::vector<typename Piece_mesh<P>::Vertex_index>& loop, const std::vector<double>& s,
+                             std::size_t at, double window)
+{
+  const std::size_t n = loop.size();
+  auto turn = [&](std::size_t i) { // degrees
+    const Eigen::Vector3d& N = normal[std::size_t(loop[i])];
+    Eigen::Vector3d in = g.position[std::size_t(loop[i])] - g.position[std::size_t(loop[(i + n - 1) % n])];
+    Eigen::Vector3d out = g.position[std::size_t(loop[(i + 1) % n])] - g.position[std::size_t(loop[i])];
+    in -= N.dot(in) * N;
+    out -= N.dot(out) * N;
+    return std::atan2(in.cross(out).norm(), in.dot(out)) * 180. / CGAL_PI;
+  };
+  double best_turn = turn(at), best_gap = 0.;
+  if(best_turn <= 30.) return at;
+  std::size_t best = at;
+  for(std::size_t i = 0; i < n; ++i) {
+    double gap = std::abs(s[i] - s[at]);
+    gap = std::min(gap, s.back() - gap);
+    if(gap > window) continue;
+    const double t = turn(i);
+    if(t < best_turn || (t == best_turn && gap < best_gap)) {
+      best = i;
+      best_turn = t;
+      best_gap = gap;
+    }
+  }
+  return best;
+}
+
 /// Shortest vertex path (3D length) from any root to `target`, entering no blocked vertex
 /// but the target; empty when unreachable.
 template <class P>
@@ -1006,6 +1042,7 @@ private:
     const auto loops = all_border_loops<Point>(P);
     if(loops.size() != 3) layout_failure("a pants patch does not have 3 boundaries");
     Mesh_graph<Mesh> g(P, get(CGAL::vertex_point, P));
+    const std::vector<Eigen::Vector3d> normal = g.vertex_normals();
     std::array<std::vector<double>, 3> dist, s;
     for(int i = 0; i < 3; ++i) {
       std::vector<int> roots;
@@ -1035,6 +1072,16 @@ private:
         seed[std::size_t(i)][std::size_t(j)] = toward_j ? first : second;
         seed[std::size_t(i)][std::size_t(k)] = toward_j ? second : first;
         for(int c = 0; c < 4; ++c) corner[std::size_t(i)][std::size_t(c)] = at_arc_length(s[std::size_t(i)], first, s[std::size_t(i)].back() * (0.125 + 0.25 * c));
+        // Off the teeth of a zigzag boundary, by at most 1/32 of the loop, so the corners keep
+        // clear of the seeds (1/8 away) and of each other.
+        std::array<std::size_t, 4> nudged = corner[std::size_t(i)];
+        for(std::size_t& c : nudged) c = straightest_near<Point>(g, normal, L, s[std::size_t(i)], c, s[std::size_t(i)].back() / 32.);
+        std::array<std::size_t, 4> sorted = nudged;
+        std::sort(sorted.begin(), sorted.end());
+        const bool apart = std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end() &&
+                           std::find(sorted.begin(), sorted.end(), first) == sorted.end() &&
+                           std::find(sorted.begin(), sorted.end(), second) == sorted.end();
+        if(apart) corner[std::size_t(i)] = nudged;
         std::sort(corner[std::size_t(i)].begin(), corner[std::size_t(i)].end());
         // Record in the cycle's own order (the cycle is a loop of m vertices).
         for(int c = 0; c < 4; ++c) placed.push_back(par[L[corner[std::size_t(i)][std::size_t(c)]]]);
