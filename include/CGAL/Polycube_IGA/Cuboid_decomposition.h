@@ -923,7 +923,10 @@ private:
     std::vector<std::vector<Embedding>> embeddings(pants.size());
     std::vector<std::array<int, 3>> loop_cycle(pants.size());
     std::vector<int> stem(pants.size(), 0);
-    for(std::size_t k = 0; k < pants.size(); ++k) pants_piece(pants[k], cycle_of, corners, hexagons[k], embeddings[k], loop_cycle[k], stem[k]);
+    std::vector<bool> input_cycle(nc);
+    for(std::size_t c = 0; c < nc; ++c) input_cycle[c] = pd.cycles[c].kind == Pants_cycle<TriangleMesh>::INPUT_BOUNDARY;
+    for(std::size_t k = 0; k < pants.size(); ++k)
+      pants_piece(pants[k], cycle_of, input_cycle, corners, hexagons[k], embeddings[k], loop_cycle[k], stem[k]);
     // Glue the refined halves into their pants, the pants into the surface.
     std::vector<Glued_mesh<Point>> glued_pants;
     std::vector<Mesh> refined_pants;
@@ -1034,7 +1037,8 @@ private:
 
   /// Places seeds, corners and the cutting curves of one pants `P` (a piece of `m`), cuts it
   /// into two halves and embeds the half-polycube graph in each.
-  static void pants_piece(Mesh& P, const std::vector<int>& cycle_of, std::vector<std::vector<std::size_t>>& corners,
+  static void pants_piece(Mesh& P, const std::vector<int>& cycle_of, const std::vector<bool>& input_cycle,
+                          std::vector<std::vector<std::size_t>>& corners,
                           std::vector<Mesh>& halves, std::vector<Embedding>& emb, std::array<int, 3>& loop_cycle, int& stem)
   {
     using namespace internal;
@@ -1072,10 +1076,13 @@ private:
         seed[std::size_t(i)][std::size_t(j)] = toward_j ? first : second;
         seed[std::size_t(i)][std::size_t(k)] = toward_j ? second : first;
         for(int c = 0; c < 4; ++c) corner[std::size_t(i)][std::size_t(c)] = at_arc_length(s[std::size_t(i)], first, s[std::size_t(i)].back() * (0.125 + 0.25 * c));
-        // Off the teeth of a zigzag boundary, by at most 1/32 of the loop, so the corners keep
-        // clear of the seeds (1/8 away) and of each other.
+        // An input boundary's corners move off the teeth of its zigzag, by at most 1/32 of the
+        // loop, so they keep clear of the seeds (1/8 away) and of each other. Not the cycles
+        // the pants stage traced: edge paths zigzag too, and their corners are where they are
+        // (moved, plate6.off's volume is no longer valid at any grid).
         std::array<std::size_t, 4> nudged = corner[std::size_t(i)];
-        for(std::size_t& c : nudged) c = straightest_near<Point>(g, normal, L, s[std::size_t(i)], c, s[std::size_t(i)].back() / 32.);
+        if(input_cycle[std::size_t(loop_cycle[std::size_t(i)])])
+          for(std::size_t& c : nudged) c = straightest_near<Point>(g, normal, L, s[std::size_t(i)], c, s[std::size_t(i)].back() / 32.);
         std::array<std::size_t, 4> sorted = nudged;
         std::sort(sorted.begin(), sorted.end());
         const bool apart = std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end() &&
