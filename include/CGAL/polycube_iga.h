@@ -331,8 +331,8 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   // An invalid volume is rebuilt on another grid, kept only if valid. First on grids twice
   // as fine, up to maximum_grid_resolution (by default one doubling): more samples and spans
   // give the faces and the untangling room (the mushroom's cube is valid at 24 and 32
-  // samples per side, not at 16). Then on one grid half as fine, down to
-  // minimum_grid_resolution (by default half the grid, if that is 8 or more): fewer spans
+  // samples per side, not at 16). Then on grids half as fine, down to
+  // minimum_grid_resolution (by default one halving, if it leaves 8 or more): fewer spans
   // give smoother cuboids with fewer control points to untangle, which is what the many
   // curved cuboids of high genus need (the genus-5 and genus-6 chains of tori in the test
   // data are valid at 8 samples, not at 16 or 32). A missing part of the shape (femur's
