@@ -105,6 +105,12 @@ inline std::vector<std::string> invalidity_reasons(const Layout_volume_result& v
 } // namespace internal
 
 /// \ingroup PkgPolycubeIGARef
+/// The default `minimum_grid_resolution` of build_trivariate_model() for a first grid of
+/// `grid` samples per patch side: one halving if that leaves 8 or more, else `grid` (no
+/// coarser retry).
+inline int default_minimum_grid_resolution(int grid) { return grid / 2 >= 8 ? grid / 2 : grid; }
+
+/// \ingroup PkgPolycubeIGARef
 /// Everything `build_trivariate_model()` produced.
 template <class Point_3>
 struct Trivariate_model
@@ -195,9 +201,8 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   const int maximum_grid = int(option(np, internal_np::maximum_grid_resolution, 2 * volume_options.sampling.grid_segments));
   if(maximum_grid > 1024)
     throw Invalid_input_error("invalid_parameter", "maximum_grid_resolution must be at most 1024 samples per patch side");
-  const int half_grid = volume_options.sampling.grid_segments / 2;
   const int minimum_grid = int(option(np, internal_np::minimum_grid_resolution,
-                                      half_grid >= 8 ? half_grid : volume_options.sampling.grid_segments));
+                                      default_minimum_grid_resolution(volume_options.sampling.grid_segments)));
   if(minimum_grid < 2)
     throw Invalid_input_error("invalid_parameter", "minimum_grid_resolution must be at least 2 samples per patch side");
   const int sweeps = int(option(np, internal_np::grid_relaxation_sweeps, 100));

@@ -164,7 +164,7 @@ int run_build(const Arguments& args)
   const double max_distance = fraction_option(a, "--max-distance", 0.02, 0., 1.);
   const int refinements = positive_option(a, "--max-refinements", 2, 0, 5);
   const int max_grid = positive_option(a, "--max-grid", std::min(2 * grid, 512), grid, 512);
-  const int min_grid = positive_option(a, "--min-grid", grid / 2 >= 8 ? grid / 2 : grid, 2, grid);
+  const int min_grid = positive_option(a, "--min-grid", PI::default_minimum_grid_resolution(grid), 2, grid);
   const int sweeps = positive_option(a, "--relax-sweeps", 100, 0, 100000);
   const int stretch = positive_option(a, "--stretch-rounds", 3, 0, 100);
   const bool verbose = !a.has("--quiet") && isatty(2);
