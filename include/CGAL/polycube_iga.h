@@ -46,6 +46,12 @@ inline std::string short_number(double x)
   return os.str();
 }
 
+/// (a, b, c), each with 3 significant digits.
+inline std::string triple_text(double a, double b, double c)
+{
+  return "(" + short_number(a) + ", " + short_number(b) + ", " + short_number(c) + ")";
+}
+
 /// A fraction as a percentage with 3 significant digits.
 inline std::string percent_text(double fraction) { return short_number(100. * fraction) + "%"; }
 
@@ -58,7 +64,7 @@ std::string boundary_distance_message(const Polycube_layout<Point_3>& layout, co
 {
   auto number = short_number;
   auto percent = percent_text;
-  auto point = [&](const std::array<double, 3>& p) { return "(" + number(p[0]) + ", " + number(p[1]) + ", " + number(p[2]) + ")"; };
+  auto point = [&](const std::array<double, 3>& p) { return triple_text(p[0], p[1], p[2]); };
   std::string s = "boundary distance " + percent(d.relative) + " of the bounding-box diagonal exceeds " + percent(limit) + ": ";
   if(d.mesh_to_spline >= d.spline_to_mesh) {
     int patch = -1;
@@ -435,9 +441,15 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
                              " samples face against the mesh); untangling cannot repair it, the fitted surface must change");
   if(model.volume.quality_evaluated)
     for(std::size_t c = 0; c < model.volume.quality.certified.size(); ++c)
-      if(!model.volume.quality.certified[c].certified_positive)
+      if(!model.volume.quality.certified[c].certified_positive) {
+        // Where: the parameters of the bound's lowest Bernstein coefficient, and that point.
+        const Jacobian_bound& b = model.volume.quality.certified[c];
+        const Eigen::Vector3d x = model.volume.volume.patch(c).evaluate(b.lower_bound_at);
         model.warnings.push_back("volume patch " + std::to_string(c) + ": det J not certified positive (lower bound " +
-                                 std::to_string(model.volume.quality.certified[c].lower_bound) + ")");
+                                 std::to_string(b.lower_bound) + " near parameters " +
+                                 internal::triple_text(b.lower_bound_at[0], b.lower_bound_at[1], b.lower_bound_at[2]) +
+                                 ", the point " + internal::triple_text(x.x(), x.y(), x.z()) + ")");
+      }
   return model;
 }
 

@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <tuple>
 
@@ -185,6 +186,56 @@ TEST_CASE("patch grids of shared arcs agree bit for bit and no uv triangle flips
         for(std::size_t i = 1; i < s.size(); ++i)
           CHECK(std::abs((s[i] - s[i - 1]).norm() - 1. / 6.) < 1e-12);
   }
+}
+
+TEST_CASE("an inner edge joining two vertices of one side is split so no triangle maps flat", "[layout_volume]")
+{
+  // A square patch whose border vertex b has one triangle, (c0, b, c1): the inner edge c0 c1
+  // joins two vertices of side 0, and that triangle would map onto the side, flat.
+  PI::internal::Surface_patch_map M;
+  const std::vector<Eigen::Vector3d> x{{0., 0., 0.}, {0.5, -0.3, 0.}, {1., 0., 0.}, {1., 1., 0.}, {0., 1., 0.}, {0.5, 0.5, 0.1}};
+  const std::vector<Eigen::Vector2d> uv{{0., 0.}, {0.5, 0.}, {1., 0.}, {1., 1.}, {0., 1.}, {0., 0.}};
+  std::vector<bool> fixed{true, true, true, true, true, false};
+  for(std::size_t v = 0; v < x.size(); ++v) {
+    M.vertex.push_back(v);
+    M.position.push_back(x[v]);
+    M.uv.push_back(uv[v]);
+  }
+  M.triangles = {{{0, 1, 2}}, {{0, 2, 5}}, {{2, 3, 5}}, {{3, 4, 5}}, {{4, 0, 5}}};
+  auto area = [&] {
+    double a = 0.;
+    for(const auto& t : M.triangles)
+      a += 0.5 * (M.position[std::size_t(t[1])] - M.position[std::size_t(t[0])]).cross(M.position[std::size_t(t[2])] - M.position[std::size_t(t[0])]).norm();
+    return a;
+  };
+  const double before = area();
+  PI::internal::split_side_chords(M, fixed);
+  REQUIRE(M.position.size() == 7);
+  CHECK(M.triangles.size() == 7);
+  CHECK(fixed.size() == 7);
+  CHECK_FALSE(fixed[6]);
+  CHECK((M.position[6] - Eigen::Vector3d(0.5, 0., 0.)).norm() == 0.);
+  CHECK(std::abs(area() - before) < 1e-14);
+  // Every triangle now has a free vertex or corners on two sides; every edge is used once
+  // per orientation inside and once on the border.
+  std::map<std::pair<int, int>, int> directed;
+  for(const auto& t : M.triangles) {
+    CHECK(std::count_if(t.begin(), t.end(), [&](int v) { return !fixed[std::size_t(v)]; }) >= 1);
+    for(int c = 0; c < 3; ++c) ++directed[{t[std::size_t(c)], t[std::size_t((c + 1) % 3)]}];
+  }
+  for(const auto& e : directed) CHECK(e.second == 1);
+  CHECK(directed.count({0, 2}) + directed.count({2, 0}) == 0);
+}
+
+TEST_CASE("no uv triangle maps flat or flips on a femur whose corner fans hold single triangles", "[layout_volume]")
+{
+  // Before inner edges joining two vertices of one side were split, three of its six
+  // patches had such a triangle (as had every femur of the population).
+  const Layout L = PI::Cuboid_decomposition<Mesh>()(load(data("femur_S001.ply")));
+  REQUIRE(L.validate().is_valid());
+  const PI::Patch_grids g = PI::sample_layout_patches(L, PI::parameters::grid_resolution(16));
+  check_no_flips(g);
+  check_arc_compatibility(L, g);
 }
 
 TEST_CASE("patch grids of an undeformed box lie on the box planes", "[layout_volume]")

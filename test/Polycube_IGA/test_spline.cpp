@@ -520,6 +520,10 @@ TEST_CASE("a folded volume is always caught by the certified bound", "[spline]")
   CHECK(!b.certified_positive);
   CHECK(b.has_nonpositive_value);
   CHECK(b.lower_bound <= s.min_determinant);
+  // The bound says where to look: det J is negative there.
+  for(double t : b.lower_bound_at) CHECK((t >= 0. && t <= 1.));
+  const auto at = v.derivatives(b.lower_bound_at, 1);
+  CHECK(at.first[0].dot(at.first[1].cross(at.first[2])) < 0.);
   // A fold between samples: sampling at span ends only can miss it; the bound cannot.
   Tensor_bspline_volume w = unit_cube(2);
   w.control_point({1, 1, 1}) = Vec(0.5, 0.5, 3.0); // dz/dw = 1 - 1.25 at the top centre

@@ -46,6 +46,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -291,6 +292,52 @@ inline double half_angle_tangent(const Eigen::Vector3d& o, const Eigen::Vector3d
   return std::min(t, 1e8);
 }
 
+/// Splits, at its midpoint, every inner edge of the patch that joins two border vertices on
+/// one side of the square: the triangles it cuts off would have all their corners on that
+/// side, flat in the map, and the grid would skip their part of the surface (where a
+/// corner's fan has a single triangle, every femur of the population has a few). The new
+/// vertex is free, and lies on the mesh, so the surface sampled does not change.
+inline void split_side_chords(Surface_patch_map& M, std::vector<bool>& fixed)
+{
+  auto sides = [&](int v) { // bit i: on side i of the square (0: v = 0, 1: u = 1, 2: v = 1, 3: u = 0)
+    if(!fixed[std::size_t(v)]) return 0u;
+    const Eigen::Vector2d& q = M.uv[std::size_t(v)];
+    return unsigned(q.y() == 0.) | unsigned(q.x() == 1.) << 1 | unsigned(q.y() == 1.) << 2 | unsigned(q.x() == 0.) << 3;
+  };
+  // Undirected edge -> the triangles holding it; inner edges have two.
+  std::map<std::pair<int, int>, std::vector<std::size_t>> faces_of;
+  auto key = [](int a, int b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
+  for(std::size_t f = 0; f < M.triangles.size(); ++f)
+    for(int c = 0; c < 3; ++c) faces_of[key(M.triangles[f][std::size_t(c)], M.triangles[f][std::size_t((c + 1) % 3)])].push_back(f);
+  std::vector<std::pair<int, int>> chords;
+  for(const auto& e : faces_of)
+    if(e.second.size() == 2 && (sides(e.first.first) & sides(e.first.second)) != 0u) chords.push_back(e.first);
+  for(const auto& e : chords) {
+    const int m = int(M.position.size());
+    M.vertex.push_back(std::numeric_limits<std::size_t>::max()); // no mesh vertex
+    M.position.push_back(0.5 * (M.position[std::size_t(e.first)] + M.position[std::size_t(e.second)]));
+    M.uv.push_back(Eigen::Vector2d::Zero());
+    fixed.push_back(false);
+    for(std::size_t f : std::vector<std::size_t>(faces_of[e])) {
+      // Triangle (a, b, c) with edge a -> b the chord: (a, m, c) in place, (m, b, c) appended.
+      std::array<int, 3> t = M.triangles[f];
+      int c = 0;
+      while(key(t[std::size_t(c)], t[std::size_t((c + 1) % 3)]) != e) ++c;
+      const int a = t[std::size_t(c)], b = t[std::size_t((c + 1) % 3)], o = t[std::size_t((c + 2) % 3)];
+      M.triangles[f] = {{a, m, o}};
+      M.triangles.push_back({{m, b, o}});
+      const std::size_t g = M.triangles.size() - 1;
+      auto& bo = faces_of[key(b, o)];
+      std::replace(bo.begin(), bo.end(), f, g);
+      faces_of[key(a, m)].push_back(f);
+      faces_of[key(m, o)].push_back(f);
+      faces_of[key(m, o)].push_back(g);
+      faces_of[key(m, b)].push_back(g);
+    }
+    faces_of.erase(e);
+  }
+}
+
 /// Builds surface patch p as its own small mesh (border = its four arcs' vertices, fixed on
 /// the square by arc length) and solves its Tutte-type embedding. `arc_cum` holds every
 /// arc's cumulative lengths; `local_of` is scratch over the mesh's vertices, all -1 on entry
@@ -347,6 +394,7 @@ Surface_patch_map map_surface_patch(const Layout& L, std::size_t p, const std::v
     M.triangles.push_back(t);
   }
   for(std::size_t v : M.vertex) local_of[v] = -1;
+  split_side_chords(M, fixed);
 
   // Free unknowns and the SPD system: sum_j W_ij (uv_i - uv_j) = 0 for interior i, with
   // W_ij = lambda_ij + lambda_ji, lambda_ij = (tan(theta/2) + tan(phi/2)) / |v_i v_j| (eq. 2.13).

@@ -47,6 +47,10 @@ struct Jacobian_bound
   double smallest_value_found = std::numeric_limits<double>::infinity();
   bool certified_positive = false;      ///< lower_bound > 0: the patch is a valid (injective) parameterization
   bool has_nonpositive_value = false;   ///< a point with det J <= 0 was found: certainly invalid
+  /// Parameters (u, v, w) near which det J is smallest: where the box giving lower_bound has
+  /// its smallest Bernstein coefficient, where to look first when a patch
+  /// is not certified positive (build_trivariate_model() names it in its warning).
+  std::array<double, 3> lower_bound_at{{0., 0., 0.}};
   std::size_t boxes = 0;                ///< Bernstein boxes examined (spans and sub-boxes)
   int depth_reached = 0;
 };
@@ -79,6 +83,7 @@ inline std::vector<double> span_samples(const Knot_vector& kv, int n)
 
 inline void accumulate(Jacobian_bound& into, const Jacobian_bound& b)
 {
+  if(b.lower_bound < into.lower_bound) into.lower_bound_at = b.lower_bound_at;
   into.lower_bound = std::min(into.lower_bound, b.lower_bound);
   into.upper_bound = std::max(into.upper_bound, b.upper_bound);
   into.smallest_value_found = std::min(into.smallest_value_found, b.smallest_value_found);
@@ -170,15 +175,26 @@ inline Jacobian_bound certified_jacobian_bound(const Tensor_bspline_volume& v,
         auto upper = [&](double m) { return m >= 0. ? m / std::pow(wmin, 6) : m / std::pow(wmax, 6); };
         // Subdivide where the coefficients straddle zero but every exact value met is positive.
         Jacobian_bound b;
-        std::vector<std::pair<Bernstein3, int>> stack{{det, 0}};
+        // Boxes: the polynomial on [lo, lo + size]^3 of the span's unit box, and their depth.
+        struct Box
+        {
+          Bernstein3 f;
+          int depth;
+          std::array<double, 3> lo;
+          double size;
+        };
+        std::vector<Box> stack{{det, 0, {{0., 0., 0.}}, 1.}};
         while(!stack.empty()) {
-          auto [f, depth] = std::move(stack.back());
+          Box box = std::move(stack.back());
           stack.pop_back();
+          const Bernstein3& f = box.f;
+          const int depth = box.depth;
           ++b.boxes;
           b.depth_reached = std::max(b.depth_reached, depth);
           const double mn = f.min_coefficient(), corner = f.min_corner_value();
           b.smallest_value_found = std::min(b.smallest_value_found, rational ? lower(corner) : corner);
           if(mn <= 0. && corner > 0. && depth < o.maximum_depth && total.boxes + b.boxes + stack.size() < o.maximum_boxes) {
+            // Octant k of the box has bit d of k set where it is the upper half in direction d.
             std::vector<Bernstein3> parts{f};
             for(int d = 0; d < 3; ++d) {
               std::vector<Bernstein3> next;
@@ -189,8 +205,20 @@ inline Jacobian_bound certified_jacobian_bound(const Tensor_bspline_volume& v,
               }
               parts.swap(next);
             }
-            for(auto& g : parts) stack.emplace_back(std::move(g), depth + 1);
+            const double half = 0.5 * box.size;
+            for(std::size_t k = 0; k < parts.size(); ++k) {
+              std::array<double, 3> lo = box.lo;
+              for(int d = 0; d < 3; ++d)
+                if((k >> (2 - d)) & 1u) lo[std::size_t(d)] += half;
+              stack.push_back({std::move(parts[k]), depth + 1, lo, half});
+            }
             continue;
+          }
+          if(lower(mn) < b.lower_bound) {
+            const std::array<double, 3> t = f.min_coefficient_point();
+            for(int d = 0; d < 3; ++d)
+              b.lower_bound_at[std::size_t(d)] =
+                br[std::size_t(d)][s[std::size_t(d)]] + (box.lo[std::size_t(d)] + box.size * t[std::size_t(d)]) * h[std::size_t(d)];
           }
           b.lower_bound = std::min(b.lower_bound, lower(mn));
           b.upper_bound = std::max(b.upper_bound, upper(f.max_coefficient()));

@@ -33,6 +33,17 @@ struct Bernstein3
   double operator()(int i, int j, int k) const { return c[index(i, j, k)]; }
   double min_coefficient() const { return *std::min_element(c.begin(), c.end()); }
   double max_coefficient() const { return *std::max_element(c.begin(), c.end()); }
+  /// Where the smallest coefficient sits, in the box's [0, 1]^3 (its Greville point i / p):
+  /// det J is small near there, so it is where a search for negative values looks first.
+  std::array<double, 3> min_coefficient_point() const
+  {
+    const std::size_t m = std::size_t(std::min_element(c.begin(), c.end()) - c.begin());
+    const std::size_t n0 = std::size_t(degree[0] + 1), n1 = std::size_t(degree[1] + 1);
+    const std::array<std::size_t, 3> at{{m % n0, (m / n0) % n1, m / (n0 * n1)}};
+    std::array<double, 3> t{};
+    for(int d = 0; d < 3; ++d) t[std::size_t(d)] = degree[std::size_t(d)] > 0 ? double(at[std::size_t(d)]) / degree[std::size_t(d)] : 0.5;
+    return t;
+  }
   /// Smallest of the 8 corner values (exact values of the polynomial).
   double min_corner_value() const
   {
