@@ -16,6 +16,7 @@
 #include <CGAL/Polycube_IGA/Polycube_layout.h>
 #include <CGAL/Polycube_IGA/Surface_topology.h>
 #include <CGAL/Polycube_IGA/parameters.h>
+#include <CGAL/Polygon_mesh_processing/compute_normal.h>
 
 #include <algorithm>
 #include <limits>
@@ -50,6 +51,52 @@ inline std::string short_number(double x)
 inline std::string triple_text(double a, double b, double c)
 {
   return "(" + short_number(a) + ", " + short_number(b) + ", " + short_number(c) + ")";
+}
+
+/// A surface patch corner below this many degrees, or above 180 minus it, is reported when
+/// the volume is not valid.
+constexpr double sliver_corner_degrees = 25.;
+
+/// Interior angles (degrees) of every SURFACE patch at its four corners, measured on the
+/// mesh: between the directions to the points a quarter of the way along the two arcs
+/// leaving the corner (the patch's shape there, not the teeth or hooks of a vertex path on
+/// a coarse mesh, which an eighth still sees on sphere.off), reflex (360 minus it) where they
+/// turn clockwise about the node's outward vertex normal (patches are counter-clockwise
+/// seen from outside). A box's corners measure 90 degrees; in [0, 360).
+template <class Point_3>
+std::vector<std::array<double, 4>> surface_corner_angles(const Polycube_layout<Point_3>& L)
+{
+  using Layout = Polycube_layout<Point_3>;
+  auto point = [&](typename Layout::vertex_descriptor v) {
+    const auto& q = L.mesh.point(v);
+    return Eigen::Vector3d(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z()));
+  };
+  // From node n along arc a: the point a quarter of the arc's length away.
+  auto direction = [&](std::size_t a, std::size_t n) {
+    std::vector<typename Layout::vertex_descriptor> path = L.arcs[a].vertices;
+    if(L.arcs[a].nodes[0] != n) std::reverse(path.begin(), path.end());
+    double total = 0.;
+    for(std::size_t k = 1; k < path.size(); ++k) total += (point(path[k]) - point(path[k - 1])).norm();
+    double walked = 0.;
+    std::size_t k = 1;
+    for(; k + 1 < path.size() && walked < total / 4.; ++k) walked += (point(path[k]) - point(path[k - 1])).norm();
+    return Eigen::Vector3d(point(path[std::min(k, path.size() - 1)]) - point(path[0]));
+  };
+  std::vector<std::array<double, 4>> angles(L.patches.size(), {{0., 0., 0., 0.}});
+  for(std::size_t p = 0; p < L.patches.size(); ++p) {
+    const auto& pa = L.patches[p];
+    if(pa.kind != Layout::SURFACE) continue;
+    for(int i = 0; i < 4; ++i) {
+      const std::size_t n = pa.corners[std::size_t(i)];
+      const auto nv = CGAL::Polygon_mesh_processing::compute_vertex_normal(L.nodes[n], L.mesh);
+      const Eigen::Vector3d normal(CGAL::to_double(nv.x()), CGAL::to_double(nv.y()), CGAL::to_double(nv.z()));
+      const Eigen::Vector3d next = direction(pa.arcs[std::size_t(i)], n);
+      const Eigen::Vector3d previous = direction(pa.arcs[std::size_t((i + 3) % 4)], n);
+      const double a = std::atan2(next.cross(previous).norm(), next.dot(previous)) * 180. / CGAL_PI;
+      angles[p][std::size_t(i)] = normal.dot(next.cross(previous)) >= 0. ? a : 360. - a;
+    }
+  }
+  return angles;
 }
 
 /// A fraction as a percentage with 3 significant digits.
@@ -439,6 +486,23 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     model.warnings.push_back("volume patch " + std::to_string(f.side.patch) + ": its boundary side " + std::to_string(f.side.side) +
                              " turns over (" + std::to_string(f.samples) +
                              " samples face against the mesh); untangling cannot repair it, the fitted surface must change");
+  // An invalid volume: corners where a patch is nearly flat or a sliver say why (det J of
+  // the face fitted there nearly vanishes, and no inner control point changes that).
+  if(!model.is_valid()) {
+    const std::vector<std::array<double, 4>> angles = internal::surface_corner_angles(model.layout);
+    for(std::size_t p = 0; p < angles.size(); ++p)
+      for(int i = 0; i < 4; ++i) {
+        const double a = angles[p][std::size_t(i)];
+        if(model.layout.patches[p].kind != std::decay_t<decltype(model.layout)>::SURFACE || (a >= internal::sliver_corner_degrees && a <= 180. - internal::sliver_corner_degrees)) continue;
+        const std::size_t n = model.layout.patches[p].corners[std::size_t(i)];
+        const auto& x = model.layout.mesh.point(model.layout.nodes[n]);
+        model.warnings.push_back("layout patch " + std::to_string(p) + ": its corner at node " + std::to_string(n) + " " +
+                                 internal::triple_text(CGAL::to_double(x.x()), CGAL::to_double(x.y()), CGAL::to_double(x.z())) +
+                                 " measures " + internal::short_number(a) + " degrees on the mesh: " +
+                                 (a > 180. ? "reflex, so a face fitted to it turns over there"
+                                           : std::string(a > 90. ? "nearly flat" : "a sliver") + ", so the face fitted there has det J near 0"));
+      }
+  }
   if(model.volume.quality_evaluated)
     for(std::size_t c = 0; c < model.volume.quality.certified.size(); ++c)
       if(!model.volume.quality.certified[c].certified_positive) {

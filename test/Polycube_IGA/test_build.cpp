@@ -70,6 +70,28 @@ TEST_CASE("build turns every surface class into a multipatch volume", "[build]")
   }
 }
 
+TEST_CASE("surface patch corners measure right angles on a box and none is reflex on a sphere", "[build]")
+{
+  using Layout = PI::Polycube_layout<Point>;
+  const Layout box = PI::Cuboid_decomposition<Mesh>()(load(data("cube-meshed.off")));
+  const auto right = PI::internal::surface_corner_angles(box);
+  for(std::size_t p = 0; p < box.patches.size(); ++p)
+    if(box.patches[p].kind == Layout::SURFACE)
+      for(double a : right[p]) CHECK(std::abs(a - 90.) < 1e-6);
+  // A sphere: no corner is reflex, and around a node they add up to a little less than 360
+  // degrees (chords a quarter of the way along arcs a quarter circle long dip below it).
+  const Layout sphere = PI::Cuboid_decomposition<Mesh>()(load(data("sphere.off")));
+  const auto angles = PI::internal::surface_corner_angles(sphere);
+  std::vector<double> around(sphere.nodes.size(), 0.);
+  for(std::size_t p = 0; p < sphere.patches.size(); ++p)
+    for(int i = 0; i < 4; ++i) {
+      CHECK(angles[p][std::size_t(i)] > 0.);
+      CHECK(angles[p][std::size_t(i)] < 180.);
+      around[sphere.patches[p].corners[std::size_t(i)]] += angles[p][std::size_t(i)];
+    }
+  for(double sum : around) CHECK((sum > 300. && sum < 360.));
+}
+
 TEST_CASE("build CLI writes nothing invalid and always reports", "[build][cli]")
 {
   const std::string xml = temp_path("eight.xml"), report = temp_path("eight_report.json"), layout = temp_path("eight_layout.vtu");
