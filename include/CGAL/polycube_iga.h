@@ -67,10 +67,7 @@ template <class Point_3>
 std::vector<std::array<double, 4>> surface_corner_angles(const Polycube_layout<Point_3>& L)
 {
   using Layout = Polycube_layout<Point_3>;
-  auto point = [&](typename Layout::vertex_descriptor v) {
-    const auto& q = L.mesh.point(v);
-    return Eigen::Vector3d(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z()));
-  };
+  auto point = [&](typename Layout::vertex_descriptor v) { return to_eigen_point(L.mesh.point(v)); };
   // From node n along arc a: the point a quarter of the arc's length away.
   auto direction = [&](std::size_t a, std::size_t n) {
     std::vector<typename Layout::vertex_descriptor> path = L.arcs[a].vertices;
@@ -495,9 +492,9 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
         const double a = angles[p][std::size_t(i)];
         if(model.layout.patches[p].kind != std::decay_t<decltype(model.layout)>::SURFACE || (a >= internal::sliver_corner_degrees && a <= 180. - internal::sliver_corner_degrees)) continue;
         const std::size_t n = model.layout.patches[p].corners[std::size_t(i)];
-        const auto& x = model.layout.mesh.point(model.layout.nodes[n]);
+        const Eigen::Vector3d x = internal::to_eigen_point(model.layout.mesh.point(model.layout.nodes[n]));
         model.warnings.push_back("layout patch " + std::to_string(p) + ": its corner at node " + std::to_string(n) + " " +
-                                 internal::triple_text(CGAL::to_double(x.x()), CGAL::to_double(x.y()), CGAL::to_double(x.z())) +
+                                 internal::triple_text(x.x(), x.y(), x.z()) +
                                  " measures " + internal::short_number(a) + " degrees on the mesh: " +
                                  (a > 180. ? "reflex, so a face fitted to it turns over there"
                                            : std::string(a > 90. ? "nearly flat" : "a sliver") + ", so the face fitted there has det J near 0"));
