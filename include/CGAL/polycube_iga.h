@@ -67,17 +67,15 @@ template <class Point_3>
 std::vector<std::array<double, 4>> surface_corner_angles(const Polycube_layout<Point_3>& L)
 {
   using Layout = Polycube_layout<Point_3>;
-  auto point = [&](typename Layout::vertex_descriptor v) { return to_eigen_point(L.mesh.point(v)); };
-  // From node n along arc a: the point a quarter of the arc's length away.
+  // From node n along arc a: the first vertex past a quarter of the arc's length.
   auto direction = [&](std::size_t a, std::size_t n) {
-    std::vector<typename Layout::vertex_descriptor> path = L.arcs[a].vertices;
+    std::vector<Eigen::Vector3d> path;
+    for(auto v : L.arcs[a].vertices) path.push_back(to_eigen_point(L.mesh.point(v)));
     if(L.arcs[a].nodes[0] != n) std::reverse(path.begin(), path.end());
-    double total = 0.;
-    for(std::size_t k = 1; k < path.size(); ++k) total += (point(path[k]) - point(path[k - 1])).norm();
-    double walked = 0.;
+    const std::vector<double> length = cumulative_lengths(path);
     std::size_t k = 1;
-    for(; k + 1 < path.size() && walked < total / 4.; ++k) walked += (point(path[k]) - point(path[k - 1])).norm();
-    return Eigen::Vector3d(point(path[std::min(k, path.size() - 1)]) - point(path[0]));
+    while(k + 1 < path.size() && length[k - 1] < length.back() / 4.) ++k;
+    return Eigen::Vector3d(path[std::min(k, path.size() - 1)] - path[0]);
   };
   std::vector<std::array<double, 4>> angles(L.patches.size(), {{0., 0., 0., 0.}});
   for(std::size_t p = 0; p < L.patches.size(); ++p) {
