@@ -238,6 +238,79 @@ TEST_CASE("no uv triangle maps flat or flips on a femur whose corner fans hold s
   check_arc_compatibility(L, g);
 }
 
+/// Largest turn (degrees) between consecutive segments of a polyline.
+double sharpest_turn(const std::vector<Eigen::Vector3d>& s)
+{
+  double worst = 0.;
+  for(std::size_t i = 1; i + 1 < s.size(); ++i) {
+    const Eigen::Vector3d a = s[i] - s[i - 1], b = s[i + 1] - s[i];
+    worst = std::max(worst, std::atan2(a.cross(b).norm(), a.dot(b)) * 180. / CGAL_PI);
+  }
+  return worst;
+}
+
+TEST_CASE("a sharp turn inside a boundary arc is rounded within its two edges", "[layout_volume]")
+{
+  // A V: two edges of length 1 meeting at a right angle, sampled at 16 segments.
+  const std::vector<Eigen::Vector3d> v{{-1., 0., 0.}, {0., 0., 0.}, {0., 1., 0.}};
+  const std::vector<double> cum = PI::internal::cumulative_lengths(v);
+  const std::vector<Eigen::Vector3d> plain = PI::internal::sample_polyline(v, cum, 16);
+  std::vector<Eigen::Vector3d> r = plain;
+  PI::internal::round_sharp_turns(v, cum, 60., r);
+  CHECK(sharpest_turn(plain) == Approx(90.));
+  CHECK(sharpest_turn(r) < 30.);
+  int moved = 0;
+  for(std::size_t i = 0; i < r.size(); ++i) {
+    const double t = cum.back() * double(i) / 16.;
+    if(std::abs(t - 1.) >= 0.5) {
+      CHECK(r[i] == plain[i]); // outside the window: untouched, ends included
+      continue;
+    }
+    ++moved;
+    // On the quadratic Bezier (-1/2,0) (0,0) (0,1/2): x = -(1-u)^2/2, y = u^2/2, and inside
+    // the corner's triangle, at most a quarter of the edge from the vertex's polyline.
+    CHECK(std::abs(std::sqrt(-2. * r[i].x()) + std::sqrt(2. * r[i].y()) - 1.) < 1e-12);
+    CHECK(r[i].x() <= 0.);
+    CHECK(r[i].y() >= 0.);
+    CHECK((r[i] - plain[i]).norm() <= 0.25 + 1e-12);
+  }
+  CHECK(moved == 7); // the samples within half an edge of the vertex
+  // A turn below the threshold is kept.
+  std::vector<Eigen::Vector3d> kept = plain;
+  PI::internal::round_sharp_turns(v, cum, 100., kept);
+  CHECK(kept == plain);
+}
+
+TEST_CASE("the eye holes' tips are rounded in head.off's arc samples and nowhere else", "[layout_volume]")
+{
+  // Each eye loop has 10 vertices and turns by about 105 degrees at its two tips, inside
+  // its arcs: a reflex crease in the middle of the face of the slab under the surface.
+  const Layout L = PI::Cuboid_decomposition<Mesh>()(load(data("head.off")));
+  REQUIRE(L.validate().is_valid());
+  const PI::Patch_grids g = PI::sample_layout_patches(L, PI::parameters::grid_resolution(16));
+  const PI::Patch_grids plain = PI::sample_layout_patches(L, PI::parameters::grid_resolution(16).sharp_boundary_turn(0.));
+  int rounded = 0, border_arcs = 0;
+  for(std::size_t a = 0; a < L.arcs.size(); ++a) {
+    std::vector<Eigen::Vector3d> pts;
+    for(auto v : L.arcs[a].vertices) pts.push_back(PI::internal::to_eigen_point(L.mesh.point(v)));
+    const bool border = PI::internal::on_mesh_border(L.mesh, L.arcs[a].vertices);
+    border_arcs += border;
+    if(g.arc_samples[a] == plain.arc_samples[a]) continue;
+    ++rounded;
+    INFO("arc " << a);
+    CHECK(border);
+    CHECK(g.arc_samples[a].front() == plain.arc_samples[a].front());
+    CHECK(g.arc_samples[a].back() == plain.arc_samples[a].back());
+    CHECK(sharpest_turn(pts) > 100.);
+    CHECK(sharpest_turn(g.arc_samples[a]) < 60.);
+  }
+  CHECK(border_arcs == 12); // the neck and the two eyes, 4 arcs each
+  CHECK(rounded >= 2);
+  check_arc_compatibility(L, g);
+  check_no_flips(g);
+  CHECK_THROWS_AS(PI::sample_layout_patches(L, PI::parameters::sharp_boundary_turn(-1.)), PI::Invalid_input_error);
+}
+
 TEST_CASE("patch grids of an undeformed box lie on the box planes", "[layout_volume]")
 {
   for(bool open : {false, true})

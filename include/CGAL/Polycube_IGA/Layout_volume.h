@@ -469,6 +469,8 @@ Layout_volume_options layout_volume_options(const NamedParameters& np, Layout_vo
   base.sampling.smooth_interior_patches =
     bool(option(np, internal_np::smooth_interior_patches, base.sampling.smooth_interior_patches));
   base.sampling.stretch_rounds = int(option(np, internal_np::stretch_rounds, base.sampling.stretch_rounds));
+  base.sampling.sharp_boundary_turn = option(np, internal_np::sharp_boundary_turn, base.sampling.sharp_boundary_turn);
+  internal::check_sharp_boundary_turn(base.sampling.sharp_boundary_turn);
   base.degree = int(option(np, internal_np::spline_degree, base.degree));
   base.spans = int(option(np, internal_np::number_of_spans, base.spans));
   base.stretching_weight = option(np, internal_np::stretching_weight, base.stretching_weight);

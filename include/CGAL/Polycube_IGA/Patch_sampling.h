@@ -65,6 +65,9 @@ struct Patch_sampling_options
   /// SURFACE patches: rounds of stretch reduction after the mean-value map (0: none), which
   /// give a protrusion that the map shrinks its share of the grid (map_surface_patch()).
   int stretch_rounds = 0;
+  /// Arcs on the mesh's border (input boundary loops) are rounded where they turn by more
+  /// than this many degrees at a vertex inside the arc (round_sharp_turns(); 0: never).
+  double sharp_boundary_turn = 60.;
 };
 
 namespace internal {
@@ -158,6 +161,53 @@ inline std::vector<Eigen::Vector3d> sample_polyline(const std::vector<Eigen::Vec
     r[std::size_t(i)] = pts[k] + t * (pts[k + 1] - pts[k]);
   }
   return r;
+}
+
+inline void check_sharp_boundary_turn(double degrees)
+{
+  if(!(degrees >= 0. && degrees <= 180.))
+    throw Invalid_input_error("invalid_parameter", "sharp_boundary_turn must be between 0 and 180 degrees");
+}
+
+/// Whether the vertex path `path` runs along the border of `mesh` (an input boundary loop).
+template <class Mesh, class Vertex>
+bool on_mesh_border(const Mesh& mesh, const std::vector<Vertex>& path)
+{
+  for(std::size_t k = 0; k + 1 < path.size(); ++k) {
+    const auto h = halfedge(path[k], path[k + 1], mesh);
+    if(!h.second || !(is_border(h.first, mesh) || is_border(opposite(h.first, mesh), mesh))) return false;
+  }
+  return path.size() > 1;
+}
+
+/// Rounds the samples `r` of the polyline `pts` (cumulative lengths `cum`, samples at
+/// i/N of its length) where it turns by more than `sharp_turn` degrees at an inner vertex:
+/// the samples within half the shorter edge of that vertex move to the quadratic Bezier
+/// curve with the vertex as its control point, at the same arc-length parameter. Why: on
+/// an input boundary loop such a vertex is inside a patch side (a tip of head.off's eye
+/// holes turns by 105 degrees), and a side with a kink is a reflex crease in the middle of
+/// the face of the slab under the surface, where det J of a smooth map cannot stay
+/// positive. The curve cuts across the hole by at most a quarter of the edge lengths.
+inline void round_sharp_turns(const std::vector<Eigen::Vector3d>& pts, const std::vector<double>& cum, double sharp_turn,
+                              std::vector<Eigen::Vector3d>& r)
+{
+  const int N = int(r.size()) - 1;
+  const double total = cum.back(), cos_sharp = std::cos(sharp_turn * CGAL_PI / 180.);
+  if(N < 2 || !(total > 0.)) return;
+  for(std::size_t k = 1; k + 1 < pts.size(); ++k) {
+    const Eigen::Vector3d in = pts[k] - pts[k - 1], out = pts[k + 1] - pts[k];
+    const double li = in.norm(), lo = out.norm();
+    if(!(li > 0. && lo > 0.) || in.dot(out) >= cos_sharp * li * lo) continue;
+    // Within the vertex's two edges, so rounded turns never overlap and the curve stays in
+    // the triangle of the two edges (windows reaching further did not do better on head.off).
+    const double w = 0.5 * std::min(li, lo);
+    const Eigen::Vector3d A = pts[k] - w * in / li, B = pts[k] + w * out / lo;
+    for(int i = 1; i < N; ++i) {
+      const double t = (total * double(i) / double(N) - (cum[k] - w)) / (2. * w);
+      if(t <= 0. || t >= 1.) continue;
+      r[std::size_t(i)] = (1. - t) * (1. - t) * A + 2. * t * (1. - t) * pts[k] + t * t * B;
+    }
+  }
 }
 
 /// Copies the four arc samples into the border rows of an (N+1)^2 grid (corner i of the
@@ -679,6 +729,8 @@ Patch_grids sample_layout_patches(const Polycube_layout<Point_3>& layout, const 
     for(auto v : layout.arcs[a].vertices) pts.push_back(internal::to_eigen_point(layout.mesh.point(v)));
     cum[a] = internal::cumulative_lengths(pts);
     r.arc_samples[a] = internal::sample_polyline(pts, cum[a], N);
+    if(o.sharp_boundary_turn > 0. && internal::on_mesh_border(layout.mesh, layout.arcs[a].vertices))
+      internal::round_sharp_turns(pts, cum[a], o.sharp_boundary_turn, r.arc_samples[a]);
   }
   r.grids.assign(layout.patches.size(), Point_grid(N + 1, N + 1));
   r.flipped_triangles.assign(layout.patches.size(), 0);
@@ -717,6 +769,8 @@ Patch_grids sample_layout_patches(const Polycube_layout<Point_3>& layout,
   base.smooth_interior_patches = bool(option(np, internal_np::smooth_interior_patches, base.smooth_interior_patches));
   base.stretch_rounds = int(option(np, internal_np::stretch_rounds, base.stretch_rounds));
   if(base.stretch_rounds < 0) throw Invalid_input_error("invalid_parameter", "stretch_rounds must not be negative");
+  base.sharp_boundary_turn = option(np, internal_np::sharp_boundary_turn, base.sharp_boundary_turn);
+  internal::check_sharp_boundary_turn(base.sharp_boundary_turn);
   return sample_layout_patches(layout, base);
 }
 
