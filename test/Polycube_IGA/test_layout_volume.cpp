@@ -251,7 +251,8 @@ double sharpest_turn(const std::vector<Eigen::Vector3d>& s)
 
 TEST_CASE("a sharp turn inside a boundary arc is rounded within its two edges", "[layout_volume]")
 {
-  // A V: two edges of length 1 meeting at a right angle, sampled at 16 segments.
+  // A V: two edges of length 1 meeting at a right angle, sampled at 16 segments. Its ends
+  // are not rounded, so the curve runs along three quarters of each edge.
   const std::vector<Eigen::Vector3d> v{{-1., 0., 0.}, {0., 0., 0.}, {0., 1., 0.}};
   const std::vector<double> cum = PI::internal::cumulative_lengths(v);
   const std::vector<Eigen::Vector3d> plain = PI::internal::sample_polyline(v, cum, 16);
@@ -262,23 +263,32 @@ TEST_CASE("a sharp turn inside a boundary arc is rounded within its two edges", 
   int moved = 0;
   for(std::size_t i = 0; i < r.size(); ++i) {
     const double t = cum.back() * double(i) / 16.;
-    if(std::abs(t - 1.) >= 0.5) {
+    if(std::abs(t - 1.) >= 0.75) {
       CHECK(r[i] == plain[i]); // outside the window: untouched, ends included
       continue;
     }
     ++moved;
-    // On the quadratic Bezier (-1/2,0) (0,0) (0,1/2): x = -(1-u)^2/2, y = u^2/2, and inside
-    // the corner's triangle, at most a quarter of the edge from the vertex's polyline.
-    CHECK(std::abs(std::sqrt(-2. * r[i].x()) + std::sqrt(2. * r[i].y()) - 1.) < 1e-12);
+    // On the quadratic Bezier (-3/4,0) (0,0) (0,3/4): x = -3/4 (1-u)^2, y = 3/4 u^2, inside
+    // the corner's triangle and less than half an edge from the polyline's sample.
+    CHECK(std::abs(std::sqrt(-r[i].x() / 0.75) + std::sqrt(r[i].y() / 0.75) - 1.) < 1e-12);
     CHECK(r[i].x() <= 0.);
     CHECK(r[i].y() >= 0.);
-    CHECK((r[i] - plain[i]).norm() <= 0.25 + 1e-12);
+    CHECK((r[i] - plain[i]).norm() < 0.5);
   }
-  CHECK(moved == 7); // the samples within half an edge of the vertex
+  CHECK(moved == 11);
   // A turn below the threshold is kept.
   std::vector<Eigen::Vector3d> kept = plain;
   PI::internal::round_sharp_turns(v, cum, 100., kept);
   CHECK(kept == plain);
+  // Two sharp vertices one edge apart (a Z) share that edge half and half: every sample
+  // moves at most once, and the turns are gone on both.
+  const std::vector<Eigen::Vector3d> z{{-1., 0., 0.}, {0., 0., 0.}, {0., 1., 0.}, {1., 1., 0.}};
+  const std::vector<double> cz = PI::internal::cumulative_lengths(z);
+  std::vector<Eigen::Vector3d> rz = PI::internal::sample_polyline(z, cz, 24);
+  PI::internal::round_sharp_turns(z, cz, 60., rz);
+  CHECK(sharpest_turn(rz) < 30.);
+  CHECK(rz[12] == Eigen::Vector3d(0., 0.5, 0.)); // the shared edge's midpoint stays
+  for(std::size_t i = 1; i < rz.size(); ++i) CHECK(rz[i].x() + rz[i].y() > rz[i - 1].x() + rz[i - 1].y()); // no backtracking
 }
 
 TEST_CASE("the eye holes' tips are rounded in head.off's arc samples and nowhere else", "[layout_volume]")

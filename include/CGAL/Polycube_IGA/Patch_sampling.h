@@ -182,28 +182,34 @@ bool on_mesh_border(const Mesh& mesh, const std::vector<Vertex>& path)
 
 /// Rounds the samples `r` of the polyline `pts` (cumulative lengths `cum`, samples at
 /// i/N of its length) where it turns by more than `sharp_turn` degrees at an inner vertex:
-/// the samples within half the shorter edge of that vertex move to the quadratic Bezier
-/// curve with the vertex as its control point, at the same arc-length parameter. Why: on
-/// an input boundary loop such a vertex is inside a patch side (a tip of head.off's eye
-/// holes turns by 105 degrees), and a side with a kink is a reflex crease in the middle of
-/// the face of the slab under the surface, where det J of a smooth map cannot stay
-/// positive. The curve cuts across the hole by at most a quarter of the edge lengths.
+/// the samples near that vertex move to the quadratic Bezier curve with the vertex as its
+/// control point, at the same arc-length parameter. Why: on an input boundary loop such a
+/// vertex is inside a patch side (a tip of head.off's eye holes turns by 105 degrees), and
+/// a side with a kink is a reflex crease in the middle of the face of the slab under the
+/// surface, where det J of a smooth map cannot stay positive. The curve stays in the
+/// triangle of the vertex's two edges, so it cuts across the hole by less than half an edge.
 inline void round_sharp_turns(const std::vector<Eigen::Vector3d>& pts, const std::vector<double>& cum, double sharp_turn,
                               std::vector<Eigen::Vector3d>& r)
 {
   const int N = int(r.size()) - 1;
   const double total = cum.back(), cos_sharp = std::cos(sharp_turn * CGAL_PI / 180.);
   if(N < 2 || !(total > 0.)) return;
+  auto sharp = [&](std::size_t k) { // an inner vertex where the polyline turns sharply
+    if(k == 0 || k + 1 >= pts.size()) return false;
+    const Eigen::Vector3d in = pts[k] - pts[k - 1], out = pts[k + 1] - pts[k];
+    return in.dot(out) < cos_sharp * in.norm() * out.norm();
+  };
   for(std::size_t k = 1; k + 1 < pts.size(); ++k) {
+    if(!sharp(k)) continue; // (a zero-length edge is never sharp)
     const Eigen::Vector3d in = pts[k] - pts[k - 1], out = pts[k + 1] - pts[k];
     const double li = in.norm(), lo = out.norm();
-    if(!(li > 0. && lo > 0.) || in.dot(out) >= cos_sharp * li * lo) continue;
-    // Within the vertex's two edges, so rounded turns never overlap and the curve stays in
-    // the triangle of the two edges (windows reaching further did not do better on head.off).
-    const double w = 0.5 * std::min(li, lo);
-    const Eigen::Vector3d A = pts[k] - w * in / li, B = pts[k] + w * out / lo;
+    // Along each edge, half of it if its other end is rounded too (no overlap), three
+    // quarters otherwise. head.off is valid so; with half of each edge one eye tip stays
+    // pinned, with half of the shorter edge on both sides two do.
+    const double wa = (sharp(k - 1) ? 0.5 : 0.75) * li, wb = (sharp(k + 1) ? 0.5 : 0.75) * lo;
+    const Eigen::Vector3d A = pts[k] - wa * in / li, B = pts[k] + wb * out / lo;
     for(int i = 1; i < N; ++i) {
-      const double t = (total * double(i) / double(N) - (cum[k] - w)) / (2. * w);
+      const double t = (total * double(i) / double(N) - (cum[k] - wa)) / (wa + wb);
       if(t <= 0. || t >= 1.) continue;
       r[std::size_t(i)] = (1. - t) * (1. - t) * A + 2. * t * (1. - t) * pts[k] + t * t * B;
     }
