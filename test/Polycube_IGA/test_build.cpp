@@ -233,6 +233,25 @@ TEST_CASE("build gives certified valid volumes for a bent tube and a Y bifurcati
   }
 }
 
+TEST_CASE("build gives a certified valid volume for a head whose eye holes have sharp tips", "[build]")
+{
+  // head.off: a pants (neck and two eye holes) whose faces point into the solid. Each eye
+  // turns by 105 degrees at its two tips, inside arcs; with the tips rounded in the arc
+  // samples (sharp_boundary_turn, 60 degrees) it is valid at the first grid. Left sharp, 3
+  // patches were pinned there (a retry test below builds it so).
+  const auto model = PI::build_trivariate_model(load(data("head.off")));
+  CHECK(model.layout.layout_class == PI::Layout_class::pants);
+  CHECK(model.layout.boundary_loops == 3);
+  CHECK(model.layout.cuboids.size() == 4);
+  CHECK(model.layout.turned_outwards);
+  CHECK(model.grid_attempts == std::vector<int>{16});
+  REQUIRE(model.is_valid());
+  for(const auto& b : model.volume.quality.certified) CHECK(b.lower_bound > 0.);
+  CHECK(model.volume.quality.overall_sampled.min_scaled_jacobian > 0.);
+  CHECK(model.volume.distance.relative < 0.01);
+  CHECK(model.volume.quality.interfaces.conforming);
+}
+
 TEST_CASE("build falls back to a coarser grid when the finer one is not valid either", "[build]")
 {
   // A chain of six tori (genus 6, 230 volume patches): at 16 samples more patches need
