@@ -147,6 +147,9 @@ TEST_CASE("build CLI rejects bad input and bad options without writing", "[build
   r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --grid 16 --min-grid 32");
   CHECK(r.exit_code == 2);
   CHECK(r.err.find("--min-grid") != std::string::npos);
+  r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --sharp-boundary-turn 200");
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("--sharp-boundary-turn") != std::string::npos);
   r = run_cli("build '" + data("torus.obj") + "'");
   CHECK(r.exit_code == 2);
   CHECK(!exists(xml));

@@ -153,7 +153,8 @@ int run_build(const Arguments& args)
   Parsed_arguments a(args, {"--merge-duplicates", "--drop-isolated", "--no-self-intersection-test", "--allow-invalid", "--quiet",
                       "--no-untangle"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
-                      "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--relax-sweeps", "--stretch-rounds"});
+                      "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--relax-sweeps", "--stretch-rounds",
+                      "--sharp-boundary-turn"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
   if(out.empty()) throw PI::Invalid_input_error("bad_arguments", "build needs -o OUT.xml");
@@ -167,6 +168,7 @@ int run_build(const Arguments& args)
   const int min_grid = positive_option(a, "--min-grid", PI::default_minimum_grid_resolution(grid), 2, grid);
   const int sweeps = positive_option(a, "--relax-sweeps", 100, 0, 100000);
   const int stretch = positive_option(a, "--stretch-rounds", 3, 0, 100);
+  const double sharp_turn = fraction_option(a, "--sharp-boundary-turn", 60., 0., 180.);
   const bool verbose = !a.has("--quiet") && isatty(2);
   auto progress = [&](const std::string& stage) {
     if(verbose) std::cerr << "polycube_iga: " << stage << "...\n";
@@ -181,7 +183,7 @@ int run_build(const Arguments& args)
     in.mesh, PI::parameters::grid_resolution(grid).spline_degree(degree).cut_criterion(criterion).boundary_layer(layer)
       .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
       .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid)
-      .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch),
+      .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn),
     progress);
 
   const bool write_volume = model.is_valid() || a.has("--allow-invalid");
@@ -221,7 +223,8 @@ Register_command build_command("build", {
   "usage: polycube_iga build MESH -o OUT.xml [--vtu OUT.vtu] [--layout-vtu L.vtu] [--layout-json L.json]\n"
   "                          [--report R.json] [--grid N] [--degree P] [--criterion length|minima|symmetry]\n"
   "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--max-grid M]\n"
-  "                          [--min-grid M] [--relax-sweeps S] [--stretch-rounds R] [--no-untangle] [--allow-invalid]\n"
+  "                          [--min-grid M] [--relax-sweeps S] [--stretch-rounds R]\n"
+  "                          [--sharp-boundary-turn D] [--no-untangle] [--allow-invalid]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
   "  --layout-vtu L    the polycube layout on the surface: patches, arcs, nodes\n"
@@ -241,6 +244,10 @@ Register_command build_command("build", {
   "  --stretch-rounds R  if the boundary is then farther from the mesh than --max-distance, build\n"
   "                    it again from patch maps with R rounds of stretch reduction (default 3;\n"
   "                    0: never), which give protrusions their share of the grid; kept if better\n"
+  "  --sharp-boundary-turn D  where an input boundary loop turns by more than D degrees at a\n"
+  "                    vertex inside a layout arc, round the arc there within the vertex's two\n"
+  "                    edges (default 60; 0: never): a sharp tip inside a patch side folds the\n"
+  "                    slab under it\n"
   "  --boundary-layer T  depth of the layer of slabs under the surface, as a fraction of the\n"
   "                    shortest arc at each node (default 0.25; 0: one patch per cuboid)\n"
   "  --no-untangle     keep the constructed inner control points; by default those of patches\n"
