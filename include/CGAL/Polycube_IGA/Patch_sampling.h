@@ -163,6 +163,7 @@ inline std::vector<Eigen::Vector3d> sample_polyline(const std::vector<Eigen::Vec
   return r;
 }
 
+/// Rejects a `sharp_boundary_turn` outside [0, 180] degrees (Invalid_input_error).
 inline void check_sharp_boundary_turn(double degrees)
 {
   if(!(degrees >= 0. && degrees <= 180.))
