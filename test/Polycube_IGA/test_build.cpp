@@ -30,6 +30,19 @@ std::string slurp(const std::string& path)
   s << in.rdbuf();
   return s.str();
 }
+
+/// A valid build: every certified det J bound positive, the smallest sampled scaled
+/// Jacobian above `min_scaled`, the boundary within `max_distance` of the bounding-box
+/// diagonal from the mesh, and conforming interfaces.
+template <class Model>
+void check_valid_volume(const Model& model, double min_scaled, double max_distance)
+{
+  REQUIRE(model.is_valid());
+  for(const auto& b : model.volume.quality.certified) CHECK(b.lower_bound > 0.);
+  CHECK(model.volume.quality.overall_sampled.min_scaled_jacobian > min_scaled);
+  CHECK(model.volume.distance.relative < max_distance);
+  CHECK(model.volume.quality.interfaces.conforming);
+}
 } // namespace
 
 TEST_CASE("build turns every surface class into a multipatch volume", "[build]")
@@ -228,11 +241,7 @@ TEST_CASE("build gives certified valid volumes for a bent tube and a Y bifurcati
     CHECK(model.layout.boundary_loops == c.loops);
     if(c.cuboids > 0) CHECK(model.layout.cuboids.size() == c.cuboids); // 4 (2g + b - 2) on the pants path
     CHECK(model.grid_attempts == std::vector<int>{16});
-    REQUIRE(model.is_valid());
-    for(const auto& b : model.volume.quality.certified) CHECK(b.lower_bound > 0.);
-    CHECK(model.volume.quality.overall_sampled.min_scaled_jacobian > 0.1);
-    CHECK(model.volume.distance.relative < 0.02);
-    CHECK(model.volume.quality.interfaces.conforming);
+    check_valid_volume(model, 0.1, 0.02);
   }
 }
 
@@ -248,11 +257,7 @@ TEST_CASE("build gives a certified valid volume for a head whose eye holes have 
   CHECK(model.layout.cuboids.size() == 4);
   CHECK(model.layout.turned_outwards);
   CHECK(model.grid_attempts == std::vector<int>{16});
-  REQUIRE(model.is_valid());
-  for(const auto& b : model.volume.quality.certified) CHECK(b.lower_bound > 0.);
-  CHECK(model.volume.quality.overall_sampled.min_scaled_jacobian > 0.);
-  CHECK(model.volume.distance.relative < 0.01);
-  CHECK(model.volume.quality.interfaces.conforming);
+  check_valid_volume(model, 0., 0.01);
 }
 
 TEST_CASE("build falls back to a coarser grid when the finer one is not valid either", "[build]")
