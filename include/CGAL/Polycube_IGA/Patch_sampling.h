@@ -195,19 +195,20 @@ inline void round_sharp_turns(const std::vector<Eigen::Vector3d>& pts, const std
   const int N = int(r.size()) - 1;
   const double total = cum.back(), cos_sharp = std::cos(sharp_turn * CGAL_PI / 180.);
   if(N < 2 || !(total > 0.)) return;
-  auto sharp = [&](std::size_t k) { // an inner vertex where the polyline turns sharply
-    if(k == 0 || k + 1 >= pts.size()) return false;
-    const Eigen::Vector3d in = pts[k] - pts[k - 1], out = pts[k + 1] - pts[k];
-    return in.dot(out) < cos_sharp * in.norm() * out.norm();
-  };
+  // The inner vertices where the polyline turns sharply (a zero-length edge never does).
+  std::vector<bool> sharp(pts.size(), false);
   for(std::size_t k = 1; k + 1 < pts.size(); ++k) {
-    if(!sharp(k)) continue; // (a zero-length edge is never sharp)
+    const Eigen::Vector3d in = pts[k] - pts[k - 1], out = pts[k + 1] - pts[k];
+    sharp[k] = in.dot(out) < cos_sharp * in.norm() * out.norm();
+  }
+  for(std::size_t k = 1; k + 1 < pts.size(); ++k) {
+    if(!sharp[k]) continue;
     const Eigen::Vector3d in = pts[k] - pts[k - 1], out = pts[k + 1] - pts[k];
     const double li = in.norm(), lo = out.norm();
     // Along each edge, half of it if its other end is rounded too (no overlap), three
     // quarters otherwise. head.off is valid so; with half of each edge one eye tip stays
     // pinned, with half of the shorter edge on both sides two do.
-    const double wa = (sharp(k - 1) ? 0.5 : 0.75) * li, wb = (sharp(k + 1) ? 0.5 : 0.75) * lo;
+    const double wa = (sharp[k - 1] ? 0.5 : 0.75) * li, wb = (sharp[k + 1] ? 0.5 : 0.75) * lo;
     const Eigen::Vector3d A = pts[k] - wa * in / li, B = pts[k] + wb * out / lo;
     for(int i = 1; i < N; ++i) {
       const double t = (total * double(i) / double(N) - (cum[k] - wa)) / (wa + wb);
