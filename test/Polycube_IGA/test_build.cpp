@@ -479,6 +479,14 @@ TEST_CASE("build CLI refuses a volume farther from the mesh than --max-distance"
   CHECK(rep.find("\"invalidity_reasons\":[\"boundary_distance\"]") != std::string::npos);
   CHECK(rep.find("\"farthest_mesh_point\":[") != std::string::npos);
   CHECK(rep.find("\"volume_written\":false") != std::string::npos);
+  // Written on request, but stderr still says it is not valid, and why.
+  const Cli_result anyway = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --report '" + report +
+                                    "' --grid 8 --max-distance 0.00001 --quiet --allow-invalid");
+  CHECK(anyway.exit_code == 0);
+  CHECK(exists(xml));
+  CHECK(anyway.err.rfind("warning: boundary_distance: the volume is not valid", 0) == 0);
+  CHECK(anyway.err.find("written anyway (--allow-invalid)") != std::string::npos);
+  CHECK(slurp(report).find("\"volume_written\":true") != std::string::npos);
   const Cli_result bad = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --max-distance -1");
   CHECK(bad.exit_code == 2);
   CHECK(bad.err.find("--max-distance") != std::string::npos);

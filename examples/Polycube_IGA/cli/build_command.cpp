@@ -190,7 +190,7 @@ int run_build(const Arguments& args)
   if(a.has("--layout-vtu")) PI::IO::write_layout_vtu(a.get("--layout-vtu"), model.layout);
   if(a.has("--layout-json")) PI::IO::write_layout_json(a.get("--layout-json"), model.layout);
   if(a.has("--report")) write_report(a.get("--report"), in, model, read_seconds, write_volume);
-  if(!write_volume) {
+  if(!model.is_valid()) {
     // The first reason is the error's; the message says, for each, what is wrong and where.
     const std::vector<std::string> reasons = model.invalidity_reasons();
     const std::string reason = reasons.front();
@@ -202,7 +202,11 @@ int run_build(const Arguments& args)
         if(w.find(topic) != std::string::npos) { detail = w; break; }
       all += (all.empty() ? "" : "; ") + r + (detail.empty() ? "" : ": " + detail);
     }
-    throw PI::Internal_error(reason, "the volume is not valid (" + all + "); nothing written (--allow-invalid writes it anyway)");
+    if(!write_volume)
+      throw PI::Internal_error(reason, "the volume is not valid (" + all + "); nothing written (--allow-invalid writes it anyway)");
+    // Written on request, but a script that only reads the exit code must still be told:
+    // one line on stderr, --quiet or not.
+    std::cerr << "warning: " << reason << ": the volume is not valid (" << all << "); written anyway (--allow-invalid)" << std::endl;
   }
   progress("writing " + out);
   PI::IO::write_gismo_xml(out, model.volume.volume);
@@ -256,7 +260,8 @@ Register_command build_command("build", {
   "                    as a fraction of the bounding-box diagonal (default 0.02)\n"
   "  --max-refinements R  midpoint subdivisions of the whole mesh the cuboid stage may add when\n"
   "                    a cutting curve or arc finds no room (default 2; each multiplies the faces by 4)\n"
-  "  --allow-invalid   write the volume even if it is not valid\n"
+  "  --allow-invalid   write the volume even if it is not valid (exit 0; one line on stderr,\n"
+  "                    warning: <reason_code>: ..., says why it is not)\n"
   "  exit 1 with nonpositive_jacobian when some det J is not certified positive, or with\n"
   "  boundary_distance when the boundary is farther than --max-distance (nothing written)\n",
   run_build});
