@@ -298,8 +298,10 @@ TEST_CASE("build's finer grid combines the relaxed grids and stretch-reduced map
   CHECK(model.volume.samples.segments == 32);
   CHECK(model.volume.relaxation.sweeps > 0);
   CHECK(model.stretch_rounds == 12);
-  // The finer volume was untangled (it could become valid), once.
+  // The finer volume was untangled (it could become valid), once; the first one, whose
+  // boundary was too far from the mesh for untangling to make it valid, not at all.
   CHECK(std::count(stages.begin(), stages.end(), "volume untangling, grid 32") == 1);
+  CHECK(std::count(stages.begin(), stages.end(), "volume untangling") == 0);
   bool said = false;
   for(const auto& w : model.warnings) said = said || w.find("grid of 32") != std::string::npos;
   CHECK(said);
@@ -320,6 +322,11 @@ TEST_CASE("build does not untangle a finer grid that cannot become valid, and sa
   CHECK(model.volume.samples.segments == 8);
   CHECK(std::count(stages.begin(), stages.end(), "volume construction, grid 16") == 1);
   CHECK(std::count(stages.begin(), stages.end(), "volume untangling, grid 16") == 0);
+  // The first grid, which no untangling makes valid either, is untangled once the other grid
+  // has failed too: the best invalid volume, as if it had been untangled first.
+  const auto finer = std::find(stages.begin(), stages.end(), "volume construction, grid 16");
+  CHECK(std::find(stages.begin(), finer, "volume untangling") == finer);
+  CHECK(std::count(finer, stages.end(), "volume untangling") == 1);
   bool said = false;
   for(const auto& w : model.warnings)
     said = said || (w.find("grid of 16") != std::string::npos && w.find("not untangled: a boundary side turns over") != std::string::npos);
