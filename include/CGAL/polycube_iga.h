@@ -213,7 +213,10 @@ struct Trivariate_model
 /// attempts: relaxed surface grids when the first volume is invalid, stretch-reduced patch
 /// maps when the volume is then too far from the mesh (0: no such attempt). The finer grids
 /// combine those of the two that served their ends (the stretch with four times the rounds
-/// per doubling).
+/// per doubling). `untangle_invalid_result` (true): when no grid gives a valid volume and the
+/// first one cannot become valid by untangling (boundary too far or turned over), untangle it
+/// all the same, for the best invalid result; false returns it as built, sooner (the CLI does
+/// so unless `--allow-invalid`, since it writes no invalid volume).
 /// Throws the stages' errors; an invalid layout becomes Internal_error("invalid_layout").
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
 auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values(),
@@ -464,7 +467,13 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     if(!retry_on_grid(N)) break;
   for(int N = first_grid / 2; N >= minimum_grid && worth_retrying(); N /= 2)
     if(!retry_on_grid(N)) break;
-  if(first_grid_hopeless) untangle_first_grid(); // none was valid
+  if(first_grid_hopeless && worth_retrying()) { // none was valid
+    if(option(np, internal_np::untangle_invalid_result, true))
+      untangle_first_grid();
+    else if(untangle)
+      model.warnings.push_back("not untangled (untangle_invalid_result is false): no untangling makes this volume valid: " +
+                               why_untangling_cannot_validate(model.volume));
+  }
   for(std::size_t p = 0; p < model.volume.samples.flipped_triangles.size(); ++p)
     if(model.volume.samples.flipped_triangles[p] > 0)
       model.warnings.push_back("patch " + std::to_string(p) + ": " + std::to_string(model.volume.samples.flipped_triangles[p]) +

@@ -327,6 +327,20 @@ TEST_CASE("build does not untangle a finer grid that cannot become valid, and sa
   const auto finer = std::find(stages.begin(), stages.end(), "volume construction, grid 16");
   CHECK(std::find(stages.begin(), finer, "volume untangling") == finer);
   CHECK(std::count(finer, stages.end(), "volume untangling") == 1);
+  // Unless the caller has no use for an invalid volume (the CLI without --allow-invalid):
+  // then it is returned as built, and a warning says why it was not untangled.
+  stages.clear();
+  const auto as_built = PI::build_trivariate_model(
+    m, PI::parameters::grid_resolution(8).maximum_grid_resolution(16).sharp_boundary_turn(0.).untangle_invalid_result(false),
+    [&](const std::string& s) { stages.push_back(s); });
+  CHECK(as_built.grid_attempts == model.grid_attempts);
+  CHECK_FALSE(as_built.is_valid());
+  CHECK(std::count(stages.begin(), stages.end(), "volume untangling") == 0);
+  CHECK(as_built.volume.untangling.patches.empty());
+  CHECK(as_built.volume.distance.relative == model.volume.distance.relative); // the same surface
+  bool told = false;
+  for(const auto& w : as_built.warnings) told = told || w.find("not untangled (untangle_invalid_result is false)") != std::string::npos;
+  CHECK(told);
   bool said = false;
   for(const auto& w : model.warnings)
     said = said || (w.find("grid of 16") != std::string::npos && w.find("not untangled: a boundary side turns over") != std::string::npos);

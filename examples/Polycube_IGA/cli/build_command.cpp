@@ -183,7 +183,9 @@ int run_build(const Arguments& args)
     in.mesh, PI::parameters::grid_resolution(grid).spline_degree(degree).cut_criterion(criterion).boundary_layer(layer)
       .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
       .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid)
-      .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn),
+      .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn)
+      // An invalid volume is not written without --allow-invalid: no time spent improving it.
+      .untangle_invalid_result(a.has("--allow-invalid")),
     progress);
 
   const bool write_volume = model.is_valid() || a.has("--allow-invalid");
@@ -261,7 +263,9 @@ Register_command build_command("build", {
   "  --max-refinements R  midpoint subdivisions of the whole mesh the cuboid stage may add when\n"
   "                    a cutting curve or arc finds no room (default 2; each multiplies the faces by 4)\n"
   "  --allow-invalid   write the volume even if it is not valid (exit 0; one line on stderr,\n"
-  "                    warning: <reason_code>: ..., says why it is not)\n"
+  "                    warning: <reason_code>: ..., says why it is not); without it, a first\n"
+  "                    volume that no untangling makes valid is not untangled when no other\n"
+  "                    grid is valid either (sooner to the error; the report has its figures)\n"
   "  exit 1 with nonpositive_jacobian when some det J is not certified positive, or with\n"
   "  boundary_distance when the boundary is farther than --max-distance (nothing written)\n",
   run_build});
