@@ -261,7 +261,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   const int stretch_rounds = int(option(np, internal_np::stretch_rounds, 3));
   if(stretch_rounds < 0) throw Invalid_input_error("invalid_parameter", "stretch_rounds must not be negative");
   Surface_topology_result<TriangleMesh> topology;
-  stage("topology", [&] { topology = Surface_topology<TriangleMesh>()(tm, parameters::compute_tunnel_loops(false)); });
+  stage("topology", [&] { topology = internal::cutting_topology(tm); });
   for(const auto& w : topology.warnings) model.warnings.push_back(w);
   stage("cuboid decomposition", [&] {
     model.layout = Decomposition()(tm, parameters::surface_topology(topology)
