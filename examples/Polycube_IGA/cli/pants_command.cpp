@@ -70,8 +70,8 @@ int run_pants(const Arguments& args)
 
   Input_mesh in = read_input_mesh(a.positional()[0], a);
   in.report.require_valid();
-  // The topology once, for the decomposition and for validate().
-  const auto topology = PI::Surface_topology<Mesh>()(in.mesh, PI::parameters::compute_tunnel_loops(false));
+  // The topology once, for the decomposition and for validate(); the one build cuts along.
+  const auto topology = PI::internal::cutting_topology(in.mesh);
   const auto result = PI::Pants_decomposition<Mesh>()(
     in.mesh, PI::parameters::cut_criterion(criterion).symmetry_plane(plane).surface_topology(topology));
   const PI::Pants_validation check = PI::Pants_decomposition<Mesh>::validate(in.mesh, result, topology);
