@@ -526,7 +526,7 @@ namespace internal {
 /// about as short, and the plain search put the handle loop wherever it met the shortest:
 /// beside the hole of a torus with one hole, whose single pants then had one arm a quarter of
 /// the ring long and the other three quarters, and layout slivers of 2 degrees (nothing valid
-/// at any grid, 381 s); opposite the hole it is valid at once, in 1 s. Not at higher genus:
+/// at any grid, 381 s); opposite the hole it is valid at once, in 2 s. Not at higher genus:
 /// there the metric left more patches uncertified (double-torus-3-holes.off 44 -> 57).
 template <class TriangleMesh>
 Surface_topology_result<TriangleMesh> cutting_topology(const TriangleMesh& tm)
