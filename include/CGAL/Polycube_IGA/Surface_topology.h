@@ -539,18 +539,10 @@ Surface_topology_result<TriangleMesh> cutting_topology(const TriangleMesh& tm)
     if(g.is_border_vertex[std::size_t(v)]) border.push_back(v);
   std::vector<double> length(std::size_t(g.number_of_edges()));
   for(int e = 0; e < g.number_of_edges(); ++e) length[std::size_t(e)] = g.length(e);
-  const std::vector<double> d = shortest_path_tree(g, border, length).distance;
-  double farthest = 0.;
-  for(double x : d)
-    if(std::isfinite(x)) farthest = std::max(farthest, x);
+  const std::vector<double> away = weights_away_from(g, border, length);
   using edge_descriptor = typename boost::graph_traits<TriangleMesh>::edge_descriptor;
   std::map<edge_descriptor, double> weight;
-  for(int e = 0; e < g.number_of_edges(); ++e) {
-    const auto& ev = g.edge_vertices[std::size_t(e)];
-    const double mid = 0.5 * (d[std::size_t(ev[0])] + d[std::size_t(ev[1])]);
-    const double nearness = farthest > 0. && std::isfinite(mid) ? std::max(0., 1. - mid / farthest) : 0.;
-    weight[edge(g.edge_halfedge[std::size_t(e)], tm)] = length[std::size_t(e)] * (1. + nearness);
-  }
+  for(int e = 0; e < g.number_of_edges(); ++e) weight[edge(g.edge_halfedge[std::size_t(e)], tm)] = away[std::size_t(e)];
   return Surface_topology<TriangleMesh>()(
     tm, parameters::compute_tunnel_loops(false).loop_edge_weight(boost::make_assoc_property_map(weight)));
 }

@@ -90,6 +90,28 @@ Shortest_path_tree shortest_path_tree(const Graph& g, int root, const std::vecto
   return shortest_path_tree(g, std::vector<int>{root}, weight, blocked, max_distance);
 }
 
+/// `weight` scaled up near `roots`: each edge's weight times 1 + max(0, 1 - d/d_max), d the
+/// distance (in `weight`) of its midpoint from the roots and d_max the largest finite one.
+/// An edge at a root counts double, one farthest from them plain: among cycles of about
+/// the same length (the meridians of a torus), the shortest in this metric keeps away from
+/// the roots. Vertices never reached keep their weight.
+template <class Graph>
+std::vector<double> weights_away_from(const Graph& g, const std::vector<int>& roots, const std::vector<double>& weight)
+{
+  if(roots.empty()) return weight;
+  const std::vector<double> d = shortest_path_tree(g, roots, weight).distance;
+  double farthest = 0.;
+  for(double x : d)
+    if(std::isfinite(x)) farthest = std::max(farthest, x);
+  std::vector<double> out(weight);
+  for(std::size_t e = 0; e < out.size(); ++e) {
+    const auto& ev = g.edge_vertices[e];
+    const double mid = 0.5 * (d[std::size_t(ev[0])] + d[std::size_t(ev[1])]);
+    if(farthest > 0. && std::isfinite(mid)) out[e] *= 1. + std::max(0., 1. - mid / farthest);
+  }
+  return out;
+}
+
 /// Vertex path from the root's subtree: the loop closed by the non-tree edge `e`, trimmed
 /// at the lowest common ancestor, so it is a simple cycle. Returned as vertices in order
 /// starting at the ancestor; the edge between the last and first vertex is implied.
