@@ -19,7 +19,8 @@
 // the mesh is refined at edge midpoints (geometry unchanged, decisions combinatorial) and the
 // decomposition restarted. Edge weights follow the chosen geometric criterion (Cut_criteria.h);
 // on a genus-1 surface with boundary loops, a cut's weights are raised near the holes of the
-// region it splits, so that it runs midway between them (decompose()).
+// region it splits, so that it runs midway between them, and each pants pairs an input
+// boundary with a handle side or a cut, so that it is a stretch of the ring (decompose()).
 
 #ifndef CGAL_POLYCUBE_IGA_PANTS_DECOMPOSITION_H
 #define CGAL_POLYCUBE_IGA_PANTS_DECOMPOSITION_H
@@ -621,10 +622,18 @@ private:
         for(int e : cycles[holes[h].cycle].edges) l += w[e];
         return l;
       };
+      // On a genus-1 surface with boundary loops, each pants pairs an input boundary with a
+      // side of the handle loop or an earlier cut, so every cut goes around the tube and each
+      // pants is a stretch of the ring with one hole. Two holes of the outer wall looked
+      // closer to each other than to the handle loop (whose enclosing cycle is only as long
+      // as the handle loop itself), and the cycle around both ran slanted over the tube.
+      const bool one_hole_per_pants = result.genus == 1 && result.boundary_loops > 0;
+      auto is_input = [&](int h) { return kinds[std::size_t(holes[h].cycle)] == Pants_cycle<TriangleMesh>::INPUT_BOUNDARY; };
       int bi = -1, bj = -1;
       double best = infinity;
       for(int i = 0; i < k; ++i)
         for(int j = i + 1; j < k; ++j) {
+          if(one_hole_per_pants && is_input(i) == is_input(j)) continue;
           const double estimate = cycle_length(i) + cycle_length(j) + 2 * link_of(i, j).distance;
           if(estimate < best) { best = estimate; bi = i; bj = j; }
         }
