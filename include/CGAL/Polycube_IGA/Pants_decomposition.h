@@ -676,13 +676,13 @@ private:
       // Minimum cut in the dual graph of the region; edges touching a cycle are uncuttable.
       // The region is planar: a shortest separating cycle (separating_cycle_cut()); the
       // maximum flow where that does not apply.
-      // On a surface of genus 0 or 1 with boundary loops, the cut keeps away from the
-      // region's holes (weights_away_from(), the metric internal::cutting_topology() gives
-      // the handle loop): cuts around a tube are all about as long, and the shortest ran
-      // beside one hole, leaving a pants with no room between its boundaries (a torus with
-      // two opposite square holes: 2 patches uncertified at every grid; cut midway, valid at
-      // the first, and mech-holes-shark.off 9 -> 2). Not at higher genus: there it moved the
-      // cuts between handles and left 3holes.obj, ring4.off, chain6.off and plate6.off invalid.
+      // On a genus-1 surface with boundary loops, the cut keeps away from the region's holes
+      // (weights_away_from(), the metric internal::cutting_topology() gives the handle loop):
+      // cuts around a tube are all about as long, and the shortest ran beside one hole,
+      // leaving a pants with no room between its boundaries (a torus with two opposite square
+      // holes: invalid at every grid; cut midway, valid at the first). Not at genus 0
+      // (mech-holes-shark.off 9 -> 2 uncertified, a star of five tubes 1 -> 2) nor at genus
+      // >= 2 (3holes.obj, ring4.off, chain6.off and plate6.off lost their valid volumes).
       std::vector<int> hole_vertices;
       if(result.genus == 1 && result.boundary_loops > 0)
         for(const Hole& h : holes)

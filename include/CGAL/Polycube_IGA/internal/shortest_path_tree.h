@@ -94,7 +94,7 @@ Shortest_path_tree shortest_path_tree(const Graph& g, int root, const std::vecto
 /// distance (in `weight`) of its midpoint from the roots and d_max the largest finite one.
 /// An edge at a root counts double, one farthest from them plain: among cycles of about
 /// the same length (the meridians of a torus), the shortest in this metric keeps away from
-/// the roots. Vertices never reached keep their weight.
+/// the roots. Edges with an end never reached keep their weight.
 template <class Graph>
 std::vector<double> weights_away_from(const Graph& g, const std::vector<int>& roots, const std::vector<double>& weight)
 {
