@@ -540,6 +540,8 @@ private:
       holes.push_back({int(cycles.size()) - 1, 1});
     }
 
+    // A torus with holes: its cuts follow two rules of their own (below).
+    const bool genus_1_with_holes = result.genus == 1 && result.boundary_loops > 0;
     std::vector<char> is_cut(g.number_of_edges(), 0), on_cycle(nv, 0);
     for(const auto& c : cycles) {
       for(int e : c.edges) is_cut[e] = 1;
@@ -627,13 +629,12 @@ private:
       // pants is a stretch of the ring with one hole. Two holes of the outer wall looked
       // closer to each other than to the handle loop (whose enclosing cycle is only as long
       // as the handle loop itself), and the cycle around both ran slanted over the tube.
-      const bool one_hole_per_pants = result.genus == 1 && result.boundary_loops > 0;
       auto is_input = [&](int h) { return kinds[std::size_t(holes[h].cycle)] == Pants_cycle<TriangleMesh>::INPUT_BOUNDARY; };
       int bi = -1, bj = -1;
       double best = infinity;
       for(int i = 0; i < k; ++i)
         for(int j = i + 1; j < k; ++j) {
-          if(one_hole_per_pants && is_input(i) == is_input(j)) continue;
+          if(genus_1_with_holes && is_input(i) == is_input(j)) continue;
           const double estimate = cycle_length(i) + cycle_length(j) + 2 * link_of(i, j).distance;
           if(estimate < best) { best = estimate; bi = i; bj = j; }
         }
@@ -684,7 +685,7 @@ private:
       // (mech-holes-shark.off 9 -> 2 uncertified, a star of five tubes 1 -> 2) nor at genus
       // >= 2 (3holes.obj, ring4.off, chain6.off and plate6.off lost their valid volumes).
       std::vector<int> hole_vertices;
-      if(result.genus == 1 && result.boundary_loops > 0)
+      if(genus_1_with_holes)
         for(const Hole& h : holes)
           for(int v : cycles[h.cycle].vertices) hole_vertices.push_back(v);
       const std::vector<double> w_cut = weights_away_from(g, hole_vertices, w);

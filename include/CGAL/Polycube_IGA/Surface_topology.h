@@ -531,9 +531,13 @@ namespace internal {
 template <class TriangleMesh>
 Surface_topology_result<TriangleMesh> cutting_topology(const TriangleMesh& tm)
 {
-  Surface_topology_result<TriangleMesh> plain = Surface_topology<TriangleMesh>()(tm, parameters::compute_tunnel_loops(false));
-  if(plain.genus != 1 || plain.number_of_boundary_loops() == 0) return plain;
+  // The class from the Euler characteristic, so the loop search runs once; an invalid mesh
+  // (several components, non-manifold) gets its error from that search either way.
   Mesh_graph<TriangleMesh> g(tm, get(CGAL::vertex_point, tm));
+  const long b = long(g.border_cycles.size());
+  const long chi = long(g.number_of_used_vertices()) - long(g.number_of_edges()) + long(g.number_of_faces());
+  if(b == 0 || 2 - chi - b != 2) // not genus 1 with boundary loops
+    return Surface_topology<TriangleMesh>()(tm, parameters::compute_tunnel_loops(false));
   std::vector<int> border;
   for(int v = 0; v < g.number_of_vertices(); ++v)
     if(g.is_border_vertex[std::size_t(v)]) border.push_back(v);

@@ -47,6 +47,13 @@ struct Mesh_graph
   std::vector<int> offset, adjacent_vertex, adjacent_edge;
 
   int number_of_vertices() const { return int(vertex.size()); }
+  /// Vertices with at least one edge: isolated ones are not part of the surface.
+  int number_of_used_vertices() const
+  {
+    int n = 0;
+    for(std::size_t v = 0; v + 1 < offset.size(); ++v) n += offset[v] < offset[v + 1];
+    return n;
+  }
   int number_of_edges() const { return int(edge_vertices.size()); }
   int number_of_faces() const { return int(face.size()); }
   /// Faces plus one "cap" node per border cycle: the dual graph of the capped surface.
