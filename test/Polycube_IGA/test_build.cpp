@@ -277,6 +277,28 @@ TEST_CASE("build gives certified valid volumes for a bent tube and a Y bifurcati
   }
 }
 
+TEST_CASE("build lays a flat blade's sections out as rectangles with corners in its rounded ends", "[build]")
+{
+  // Sections 10 by 2. Corners at equal arc lengths from the seam made a diamond (two corners
+  // at the ends, two flat ones midway) whose caps had det J near 0: min scaled J 0.076 here,
+  // and not valid at all on a blade 100 long.
+  std::istringstream in(blade_off(5, 1, 30, 64, 30));
+  Mesh blade;
+  REQUIRE(CGAL::IO::read_OFF(in, blade));
+  const auto model = PI::build_trivariate_model(blade);
+  REQUIRE(model.layout.layout_class == PI::Layout_class::cylinder);
+  std::size_t on_ends = 0;
+  for(auto v : model.layout.nodes) {
+    const auto& p = model.layout.mesh.point(v);
+    if(p.y() > 1e-9 && p.y() < 30 - 1e-9) continue;
+    ++on_ends;
+    CHECK(std::abs(p.x()) > 3.); // in the rounded end, not on a flat side
+  }
+  CHECK(on_ends == 8);
+  CHECK(model.grid_attempts == std::vector<int>{16});
+  check_valid_volume(model, 0.2, 0.02);
+}
+
 TEST_CASE("build cuts a torus with a hole opposite the hole, and its volume is valid at the first grid", "[build]")
 {
   // A square hole of 4 x 4 cells on the outer equator at angle 0: genus 1, one boundary

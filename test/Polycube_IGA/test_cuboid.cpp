@@ -10,6 +10,7 @@
 
 #include <CGAL/Polycube_IGA/Cuboid_decomposition.h>
 #include <CGAL/Polycube_IGA/internal/feature_curves.h>
+#include <CGAL/Polycube_IGA/internal/loop_corners.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/centroid.h>
@@ -159,6 +160,34 @@ TEST_CASE("cuboid decomposition of a cylinder is a chain of cuboids", "[cuboid]"
   CHECK(L.number_of_surface_patches() == 4 * L.cuboids.size());
   CHECK(L.interfaces().size() == L.cuboids.size() - 1);
   check_layout(m, L);
+}
+
+TEST_CASE("section corners split an ellipse's turning in quarters, a circle's into a square", "[cuboid]")
+{
+  auto ellipse = [](double a, double b, int n) {
+    std::vector<Eigen::Vector3d> p;
+    for(int i = 0; i < n; ++i) p.emplace_back(a * std::cos(2 * M_PI * i / n), 0.3, b * std::sin(2 * M_PI * i / n));
+    return p;
+  };
+  // A flat ellipse: one corner in each quadrant, where the tangent is at 45 degrees (x =
+  // a^2 / sqrt(a^2 + b^2) = 4.90), not on the flat sides.
+  const auto flat = ellipse(5, 1, 96);
+  const auto c = PI::internal::quarter_turn_corners(flat);
+  REQUIRE(c);
+  std::set<std::pair<bool, bool>> quadrants;
+  for(std::size_t i : *c) {
+    CHECK(std::abs(flat[i].x()) > 4.7);
+    CHECK(std::abs(flat[i].x()) < 5.);
+    quadrants.insert({flat[i].x() > 0, flat[i].z() > 0});
+  }
+  CHECK(quadrants.size() == 4);
+  // A circle: four corners a quarter apart.
+  const auto d = PI::internal::quarter_turn_corners(ellipse(2, 2, 64));
+  REQUIRE(d);
+  for(std::size_t k = 0; k < 4; ++k) CHECK(((*d)[(k + 1) % 4] + 64 - (*d)[k]) % 64 == Approx(16).margin(1));
+  // No corners for a section over 100 times longer than wide, nor for too few points.
+  CHECK(!PI::internal::quarter_turn_corners(ellipse(5, 0.01, 96)));
+  CHECK(!PI::internal::quarter_turn_corners(ellipse(5, 1, 6)));
 }
 
 TEST_CASE("cuboid decomposition of a torus is a ring of at least 3 cuboids", "[cuboid]")

@@ -148,6 +148,26 @@ inline std::string torus_off(double R, double r, int n, int m)
   return off_text(points, tris);
 }
 
+/// An open straight blade along y, `length` long, `rings` + 1 rings of `around` vertices:
+/// each section the ellipse x = a cos t, z = b sin t (a flat blade for b << a).
+inline std::string blade_off(double a, double b, double length, int around, int rings)
+{
+  std::vector<std::array<double, 3>> points;
+  std::vector<Polygon> tris;
+  for(int j = 0; j <= rings; ++j)
+    for(int i = 0; i < around; ++i) {
+      const double t = -2 * M_PI * i / around; // faces outwards
+      points.push_back({a * std::cos(t), length * j / rings, b * std::sin(t)});
+    }
+  auto id = [&](int i, int j) { return std::size_t(j * around + (i + around) % around); };
+  for(int j = 0; j < rings; ++j)
+    for(int i = 0; i < around; ++i) {
+      tris.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      tris.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return off_text(points, tris);
+}
+
 struct Cli_result
 {
   int exit_code = -1;

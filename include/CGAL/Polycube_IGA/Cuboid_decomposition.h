@@ -36,6 +36,7 @@
 #include <CGAL/Polycube_IGA/parameters.h>
 #include <CGAL/Polycube_IGA/internal/feature_curves.h>
 #include <CGAL/Polycube_IGA/internal/layout_assembly.h>
+#include <CGAL/Polycube_IGA/internal/loop_corners.h>
 #include <CGAL/Polycube_IGA/internal/mesh_graph.h>
 #include <CGAL/Polycube_IGA/internal/mesh_refinement.h>
 #include <CGAL/Polycube_IGA/internal/mesh_pieces.h>
@@ -679,9 +680,13 @@ private:
   /// mapped to a rectangle as long as the seam and as high as the loops, longitudinal arcs
   /// are the lines at heights 1/4, 1/2, 3/4 (the seam itself is the fourth) and the sections
   /// are vertical lines at j/k of the seam's length.
+  /// `levels`, if given, are the three other corners of the sections on loop 1 and on loop 2
+  /// (mesh vertices, the seam's ends being the fourth); else they are at 1/4, 1/2, 3/4 of
+  /// the loops' lengths.
   static Layout strip(Mesh m, const std::vector<bool>& cut, const std::vector<std::size_t>& seam,
                       const std::vector<std::size_t>& loop1, const std::vector<std::size_t>& loop2, bool ring, int genus,
-                      std::size_t boundary_loops)
+                      std::size_t boundary_loops,
+                      const std::optional<std::array<std::array<std::size_t, 3>, 2>>& levels = std::nullopt)
   {
     using namespace internal;
     std::vector<Mesh> pieces = cut_into_pieces(m, cut);
@@ -727,6 +732,26 @@ private:
       } else
         right[std::size_t(l - 1)] = at_arc_length(s, ms, (s[r] - s[ms]) * l / 4.);
     }
+    if(levels) {
+      // Left levels by decreasing border index (upwards from the seam), right increasing.
+      for(int side = 0; side < 2; ++side) {
+        std::array<std::size_t, 3> at{n, n, n};
+        const std::size_t from = side == 0 ? r + ms + 1 : ms + 1, to = side == 0 ? n : r;
+        for(std::size_t l = 0; l < 3; ++l)
+          for(std::size_t i = from; i < to; ++i)
+            if(par[loop[i]] == (*levels)[std::size_t(side)][l]) at[l] = i;
+        if(std::count(at.begin(), at.end(), n) > 0) layout_failure("a section corner is not on its loop");
+        std::sort(at.begin(), at.end());
+        if(side == 0) std::reverse(at.begin(), at.end());
+        (side == 0 ? left : right) = at;
+      }
+    }
+    // Heights of the levels on the rectangle's left and right sides.
+    std::array<double, 3> hl{}, hr{};
+    for(std::size_t l = 0; l < 3; ++l) {
+      hl[l] = H * (s.back() - s[left[l]]) / (s.back() - s[r + ms]);
+      hr[l] = H * (s[right[l]] - s[ms]) / (s[r] - s[ms]);
+    }
     for(int l = 0; l < 3; ++l) pg.border_nodes.push_back(left[std::size_t(l)]);
     for(int l = 0; l < 3; ++l) pg.border_nodes.push_back(right[std::size_t(l)]);
     std::vector<std::size_t> seam_node(std::size_t(k + 1));
@@ -747,7 +772,7 @@ private:
     auto top = [&](int j) { return 6 + std::size_t(k - 1) + std::size_t(j - 1); };
     auto inner = [&](int j, int l) { return nb + std::size_t(j - 1) * 3 + std::size_t(l - 1); };
     for(int j = 1; j < k; ++j)
-      for(int l = 1; l <= 3; ++l) pg.interior_uv.push_back(Eigen::Vector2d(W * j / k, H * l / 4.));
+      for(std::size_t l = 0; l < 3; ++l) pg.interior_uv.push_back(Eigen::Vector2d(W * j / k, hl[l] + (hr[l] - hl[l]) * j / k));
     for(int l = 1; l <= 3; ++l) {
       std::size_t prev = std::size_t(l - 1);
       for(int j = 1; j < k; ++j) {
@@ -819,12 +844,30 @@ private:
     using namespace internal;
     const auto loops = all_border_loops<Point>(m);
     Mesh_graph<Mesh> g(m, get(CGAL::vertex_point, m));
+    // Each section's corners split the loop's turning in quarters when both loops allow it (a flat
+    // blade's section is a thin rectangle, not a diamond), and the seam joins the nearest
+    // two of them; else the seam joins the loops' nearest points.
+    std::array<std::optional<std::array<std::size_t, 4>>, 2> corner;
+    for(std::size_t i = 0; i < 2; ++i) {
+      std::vector<Eigen::Vector3d> p;
+      for(V v : loops[i]) p.push_back(g.position[std::size_t(v)]);
+      corner[i] = quarter_turn_corners(p);
+    }
+    const bool cornered = corner[0] && corner[1];
     std::vector<int> roots;
-    for(V v : loops[0]) roots.push_back(int(v));
+    if(cornered)
+      for(std::size_t c : *corner[0]) roots.push_back(int(loops[0][c]));
+    else
+      for(V v : loops[0]) roots.push_back(int(v));
     const std::vector<double> d = distances_from<Point>(g, roots);
     V target = loops[1][0];
-    for(V v : loops[1])
-      if(d[v] < d[target]) target = v;
+    if(cornered) {
+      target = loops[1][(*corner[1])[0]];
+      for(std::size_t c : *corner[1])
+        if(d[loops[1][c]] < d[target]) target = loops[1][c];
+    } else
+      for(V v : loops[1])
+        if(d[v] < d[target]) target = v;
     std::vector<bool> blocked(num_vertices(m), false);
     for(const auto& l : loops)
       for(V v : l) blocked[v] = true;
@@ -841,7 +884,23 @@ private:
       std::rotate(out.begin(), std::find(out.begin(), out.end(), v), out.end());
       return out;
     };
-    return strip(std::move(m), cut, seam, rotated(loops[0], seam.front()), rotated(loops[1], seam.back()), false, 0, 2);
+    std::optional<std::array<std::array<std::size_t, 3>, 2>> levels;
+    if(cornered) {
+      std::array<std::array<std::size_t, 3>, 2> lv{};
+      bool three = true;
+      for(std::size_t i = 0; i < 2; ++i) {
+        std::size_t l = 0;
+        for(std::size_t c : *corner[i]) {
+          const std::size_t v = std::size_t(loops[i][c]);
+          if(v == seam.front() || v == seam.back()) continue;
+          if(l < 3) lv[i][l] = v;
+          ++l;
+        }
+        three = three && l == 3;
+      }
+      if(three) levels = lv;
+    }
+    return strip(std::move(m), cut, seam, rotated(loops[0], seam.front()), rotated(loops[1], seam.back()), false, 0, 2, levels);
   }
 
   static Layout torus(const TriangleMesh& tm, const Surface_topology_result<TriangleMesh>& topo)
