@@ -149,15 +149,17 @@ inline std::string torus_off(double R, double r, int n, int m)
 }
 
 /// An open straight blade along y, `length` long, `rings` + 1 rings of `around` vertices:
-/// each section the ellipse x = a cos t, z = b sin t (a flat blade for b << a).
-inline std::string blade_off(double a, double b, double length, int around, int rings)
+/// each section the ellipse x = a cos t, z = b sin t (a flat blade for b << a), or with
+/// `power` p the superellipse |x/a|^p + |z/b|^p = 1 (p = 4: a square with round corners).
+inline std::string blade_off(double a, double b, double length, int around, int rings, double power = 2)
 {
   std::vector<std::array<double, 3>> points;
   std::vector<Polygon> tris;
   for(int j = 0; j <= rings; ++j)
     for(int i = 0; i < around; ++i) {
       const double t = -2 * M_PI * i / around; // faces outwards
-      points.push_back({a * std::cos(t), length * j / rings, b * std::sin(t)});
+      const double r = std::pow(std::pow(std::abs(std::cos(t)), power) + std::pow(std::abs(std::sin(t)), power), -1 / power);
+      points.push_back({a * r * std::cos(t), length * j / rings, b * r * std::sin(t)});
     }
   auto id = [&](int i, int j) { return std::size_t(j * around + (i + around) % around); };
   for(int j = 0; j < rings; ++j)

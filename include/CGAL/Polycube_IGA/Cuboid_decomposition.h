@@ -839,41 +839,61 @@ private:
     return out;
   }
 
+  /// Shortest vertex path from a vertex of `from` to the nearest vertex of `to` that enters
+  /// no vertex of the `loops` but its ends; empty if there is none.
+  static std::vector<int> seam_between(const internal::Mesh_graph<Mesh>& g, const std::vector<std::vector<V>>& loops,
+                                       const std::vector<V>& from, const std::vector<V>& to)
+  {
+    using namespace internal;
+    std::vector<int> roots;
+    for(V v : from) roots.push_back(int(v));
+    const std::vector<double> d = distances_from<Point>(g, roots);
+    V target = to[0];
+    for(V v : to)
+      if(d[v] < d[target]) target = v;
+    std::vector<bool> blocked(std::size_t(g.number_of_vertices()), false);
+    for(const auto& l : loops)
+      for(V v : l) blocked[v] = true;
+    for(int r : roots) blocked[std::size_t(r)] = false;
+    // Roots may be entered only as roots: the path leaves loop 1 at once.
+    return shortest_vertex_path<Point>(g, roots, int(target), blocked);
+  }
+
   static Layout cylinder(Mesh m)
   {
     using namespace internal;
     const auto loops = all_border_loops<Point>(m);
     Mesh_graph<Mesh> g(m, get(CGAL::vertex_point, m));
-    // Each section's corners split the loop's turning in quarters when both loops allow it (a flat
-    // blade's section is a thin rectangle, not a diamond), and the seam joins the nearest
-    // two of them; else the seam joins the loops' nearest points.
-    std::array<std::optional<std::array<std::size_t, 4>>, 2> corner;
-    for(std::size_t i = 0; i < 2; ++i) {
-      std::vector<Eigen::Vector3d> p;
-      for(V v : loops[i]) p.push_back(g.position[std::size_t(v)]);
-      corner[i] = quarter_turn_corners(p);
+    // The seam joins the loops' nearest points, and each section's corners are at equal arc
+    // lengths from it, unless that makes a section's quad skewed (a flat blade's section a
+    // diamond with two flat corners) and the corners that split the loops' turning in
+    // quarters make a squarer one; then the seam joins the nearest two of those.
+    std::array<std::vector<Eigen::Vector3d>, 2> p;
+    for(std::size_t i = 0; i < 2; ++i)
+      for(V v : loops[i]) p[i].push_back(g.position[std::size_t(v)]);
+    std::vector<int> path = seam_between(g, loops, loops[0], loops[1]);
+    std::optional<std::array<std::array<std::size_t, 4>, 2>> corner;
+    if(path.size() >= 2) {
+      std::array<std::optional<std::array<std::size_t, 4>>, 2> turned;
+      double equal_sine = 1., turned_sine = 1.;
+      for(std::size_t i = 0; i < 2; ++i) {
+        turned[i] = quarter_turn_corners(p[i]);
+        const std::vector<double> s = loop_arc_length(m, loops[i]);
+        const V end(std::uint32_t(i == 0 ? path.front() : path.back()));
+        const std::size_t at = std::size_t(std::find(loops[i].begin(), loops[i].end(), end) - loops[i].begin());
+        std::array<std::size_t, 4> equal{};
+        for(std::size_t k = 0; k < 4; ++k) equal[k] = at_arc_length(s, at, s.back() * double(k) / 4.);
+        equal_sine = std::min(equal_sine, corner_sine(p[i], equal));
+        if(turned[i]) turned_sine = std::min(turned_sine, corner_sine(p[i], *turned[i]));
+      }
+      if(turned[0] && turned[1] && equal_sine < 0.7 && turned_sine > equal_sine) corner = std::array<std::array<std::size_t, 4>, 2>{{*turned[0], *turned[1]}};
     }
-    const bool cornered = corner[0] && corner[1];
-    std::vector<int> roots;
-    if(cornered)
-      for(std::size_t c : *corner[0]) roots.push_back(int(loops[0][c]));
-    else
-      for(V v : loops[0]) roots.push_back(int(v));
-    const std::vector<double> d = distances_from<Point>(g, roots);
-    V target = loops[1][0];
-    if(cornered) {
-      target = loops[1][(*corner[1])[0]];
-      for(std::size_t c : *corner[1])
-        if(d[loops[1][c]] < d[target]) target = loops[1][c];
-    } else
-      for(V v : loops[1])
-        if(d[v] < d[target]) target = v;
-    std::vector<bool> blocked(num_vertices(m), false);
-    for(const auto& l : loops)
-      for(V v : l) blocked[v] = true;
-    for(int r : roots) blocked[std::size_t(r)] = false;
-    // Roots may be entered only as roots: the path leaves loop 1 at once.
-    const std::vector<int> path = shortest_vertex_path<Point>(g, roots, int(target), blocked);
+    if(corner) {
+      std::array<std::vector<V>, 2> ends;
+      for(std::size_t i = 0; i < 2; ++i)
+        for(std::size_t c : (*corner)[i]) ends[i].push_back(loops[i][c]);
+      path = seam_between(g, loops, ends[0], ends[1]);
+    }
     if(path.size() < 2) layout_failure("no seam joins the cylinder's two loops");
     std::vector<std::size_t> seam(path.begin(), path.end());
     std::vector<bool> cut(num_edges(m), false);
@@ -885,12 +905,12 @@ private:
       return out;
     };
     std::optional<std::array<std::array<std::size_t, 3>, 2>> levels;
-    if(cornered) {
+    if(corner) {
       std::array<std::array<std::size_t, 3>, 2> lv{};
       bool three = true;
       for(std::size_t i = 0; i < 2; ++i) {
         std::size_t l = 0;
-        for(std::size_t c : *corner[i]) {
+        for(std::size_t c : (*corner)[i]) {
           const std::size_t v = std::size_t(loops[i][c]);
           if(v == seam.front() || v == seam.back()) continue;
           if(l < 3) lv[i][l] = v;

@@ -39,6 +39,33 @@ inline double smallest_sine(const std::vector<Eigen::Vector2d>& q, const std::ar
   return std::max(smallest, 0.);
 }
 
+/// The closed polyline `p` in its mean plane (Newell's normal, counter-clockwise about it);
+/// empty if it encloses no area.
+inline std::optional<std::vector<Eigen::Vector2d>> in_mean_plane(const std::vector<Eigen::Vector3d>& p)
+{
+  const std::size_t n = p.size();
+  Eigen::Vector3d c = Eigen::Vector3d::Zero(), N = Eigen::Vector3d::Zero();
+  for(const auto& x : p) c += x;
+  c /= double(n);
+  for(std::size_t i = 0; i < n; ++i) N += (p[i] - c).cross(p[(i + 1) % n] - c);
+  if(!(N.norm() > 0.)) return std::nullopt;
+  N.normalize();
+  const Eigen::Vector3d e1 = N.unitOrthogonal(), e2 = N.cross(e1);
+  std::vector<Eigen::Vector2d> q(n);
+  for(std::size_t i = 0; i < n; ++i) q[i] = Eigen::Vector2d((p[i] - c).dot(e1), (p[i] - c).dot(e2));
+  return q;
+}
+
+/// The smallest sine of the angles of the quad on the points `c` (any order along the
+/// loop) of the closed polyline `p`, in its mean plane; 0 if it is not convex.
+inline double corner_sine(const std::vector<Eigen::Vector3d>& p, std::array<std::size_t, 4> c)
+{
+  const auto q = in_mean_plane(p);
+  if(!q) return 0.;
+  std::sort(c.begin(), c.end());
+  return smallest_sine(*q, c);
+}
+
 /// Indices, increasing, of four points of the closed polyline `p` that split its turning,
 /// in its mean plane (Newell's normal), into four quarters of 90 degrees: the corners at
 /// turnings a, a + 90, a + 180, a + 270, with a the offset (in whole degrees) whose chord
@@ -53,15 +80,9 @@ inline std::optional<std::array<std::size_t, 4>> quarter_turn_corners(const std:
 {
   const std::size_t n = p.size();
   if(n < 8) return std::nullopt;
-  Eigen::Vector3d c = Eigen::Vector3d::Zero(), N = Eigen::Vector3d::Zero();
-  for(const auto& x : p) c += x;
-  c /= double(n);
-  for(std::size_t i = 0; i < n; ++i) N += (p[i] - c).cross(p[(i + 1) % n] - c);
-  if(!(N.norm() > 0.)) return std::nullopt;
-  N.normalize();
-  const Eigen::Vector3d e1 = N.unitOrthogonal(), e2 = N.cross(e1);
-  std::vector<Eigen::Vector2d> q(n);
-  for(std::size_t i = 0; i < n; ++i) q[i] = Eigen::Vector2d((p[i] - c).dot(e1), (p[i] - c).dot(e2));
+  const auto projected = in_mean_plane(p);
+  if(!projected) return std::nullopt;
+  const std::vector<Eigen::Vector2d>& q = *projected;
   // turn[i]: the turning, in degrees, from edge 0 to edge i (counter-clockwise about N).
   std::vector<double> turn(n + 1, 0.);
   for(std::size_t i = 1; i <= n; ++i) {
