@@ -678,11 +678,10 @@ private:
   /// Lays a chain (or ring) of `k` cuboids in the disk `m` cut open along `cut`: the
   /// disk's border runs seam (bottom), loop 2 (right), seam back (top), loop 1 (left); it is
   /// mapped to a rectangle as long as the seam and as high as the loops, longitudinal arcs
-  /// are the lines at heights 1/4, 1/2, 3/4 (the seam itself is the fourth) and the sections
-  /// are vertical lines at j/k of the seam's length.
-  /// `levels`, if given, are the three other corners of the sections on loop 1 and on loop 2
-  /// (mesh vertices, the seam's ends being the fourth); else they are at 1/4, 1/2, 3/4 of
-  /// the loops' lengths.
+  /// are the straight lines joining the three level nodes of loop 1 to those of loop 2 (the
+  /// seam itself is the fourth) and the sections are vertical lines at j/k of the seam's
+  /// length. The level nodes are `levels` (mesh vertices on loop 1 and on loop 2) if given,
+  /// else at 1/4, 1/2, 3/4 of each loop's length from the seam.
   static Layout strip(Mesh m, const std::vector<bool>& cut, const std::vector<std::size_t>& seam,
                       const std::vector<std::size_t>& loop1, const std::vector<std::size_t>& loop2, bool ring, int genus,
                       std::size_t boundary_loops,
@@ -886,7 +885,8 @@ private:
         equal_sine = std::min(equal_sine, corner_sine(p[i], equal));
         if(turned[i]) turned_sine = std::min(turned_sine, corner_sine(p[i], *turned[i]));
       }
-      if(turned[0] && turned[1] && equal_sine < 0.7 && turned_sine > equal_sine) corner = std::array<std::array<std::size_t, 4>, 2>{{*turned[0], *turned[1]}};
+      const double skewed = 0.7; // the sine of 44 degrees
+      if(turned[0] && turned[1] && equal_sine < skewed && turned_sine > equal_sine) corner = std::array<std::array<std::size_t, 4>, 2>{{*turned[0], *turned[1]}};
     }
     if(corner) {
       std::array<std::vector<V>, 2> ends;
