@@ -62,19 +62,30 @@ constexpr double sliver_corner_degrees = 25.;
 /// leaving the corner (the patch's shape there, not the teeth or hooks of a vertex path on
 /// a coarse mesh, which an eighth still sees on sphere.off), reflex (360 minus it) where they
 /// turn clockwise about the node's outward vertex normal (patches are counter-clockwise
-/// seen from outside). A box's corners measure 90 degrees; in [0, 360).
+/// seen from outside). An arc is followed no farther than its vertex normals stay within 60
+/// degrees of the node's: past a sharp edge (around a thin blade's edge) the chord would
+/// point through the solid, and a blade's every corner read reflex. A box's corners measure
+/// 90 degrees; in [0, 360).
 template <class Point_3>
 std::vector<std::array<double, 4>> surface_corner_angles(const Polycube_layout<Point_3>& L)
 {
   using Layout = Polycube_layout<Point_3>;
-  // From node n along arc a: the first vertex past a quarter of the arc's length.
-  auto direction = [&](std::size_t a, std::size_t n) {
+  using Vertex = typename Layout::vertex_descriptor;
+  auto unit_normal = [&](Vertex v) {
+    const auto n = CGAL::Polygon_mesh_processing::compute_vertex_normal(v, L.mesh);
+    return Eigen::Vector3d(CGAL::to_double(n.x()), CGAL::to_double(n.y()), CGAL::to_double(n.z())).normalized();
+  };
+  // From node n along arc a: the first vertex past a quarter of the arc's length, or the
+  // last before the surface turns away from the node's `normal`.
+  auto direction = [&](std::size_t a, std::size_t n, const Eigen::Vector3d& normal) {
+    std::vector<Vertex> vs(L.arcs[a].vertices.begin(), L.arcs[a].vertices.end());
+    if(L.arcs[a].nodes[0] != n) std::reverse(vs.begin(), vs.end());
     std::vector<Eigen::Vector3d> path;
-    for(auto v : L.arcs[a].vertices) path.push_back(to_eigen_point(L.mesh.point(v)));
-    if(L.arcs[a].nodes[0] != n) std::reverse(path.begin(), path.end());
+    for(Vertex v : vs) path.push_back(to_eigen_point(L.mesh.point(v)));
     const std::vector<double> length = cumulative_lengths(path);
+    const double turned_away = 0.5; // the cosine of 60 degrees
     std::size_t k = 1;
-    while(k + 1 < path.size() && length[k - 1] < length.back() / 4.) ++k;
+    while(k + 1 < path.size() && length[k - 1] < length.back() / 4. && unit_normal(vs[k + 1]).dot(normal) > turned_away) ++k;
     return Eigen::Vector3d(path[std::min(k, path.size() - 1)] - path[0]);
   };
   std::vector<std::array<double, 4>> angles(L.patches.size(), {{0., 0., 0., 0.}});
@@ -83,10 +94,9 @@ std::vector<std::array<double, 4>> surface_corner_angles(const Polycube_layout<P
     if(pa.kind != Layout::SURFACE) continue;
     for(int i = 0; i < 4; ++i) {
       const std::size_t n = pa.corners[std::size_t(i)];
-      const auto nv = CGAL::Polygon_mesh_processing::compute_vertex_normal(L.nodes[n], L.mesh);
-      const Eigen::Vector3d normal(CGAL::to_double(nv.x()), CGAL::to_double(nv.y()), CGAL::to_double(nv.z()));
-      const Eigen::Vector3d next = direction(pa.arcs[std::size_t(i)], n);
-      const Eigen::Vector3d previous = direction(pa.arcs[std::size_t((i + 3) % 4)], n);
+      const Eigen::Vector3d normal = unit_normal(L.nodes[n]);
+      const Eigen::Vector3d next = direction(pa.arcs[std::size_t(i)], n, normal);
+      const Eigen::Vector3d previous = direction(pa.arcs[std::size_t((i + 3) % 4)], n, normal);
       const double a = std::atan2(next.cross(previous).norm(), next.dot(previous)) * 180. / CGAL_PI;
       angles[p][std::size_t(i)] = normal.dot(next.cross(previous)) >= 0. ? a : 360. - a;
     }
