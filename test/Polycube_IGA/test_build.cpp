@@ -147,7 +147,7 @@ TEST_CASE("surface patch corners on a thin blade are not reflex where arcs wrap 
 {
   // blade.off is 0.65 thick with sharp edges: the arcs around them turn back within their
   // first quarter, and chords that far pointed through the blade; 134 corners read reflex
-  // (80 warnings on an invalid build whose 4 bad patches are at its ends). Around each node
+  // (74 warnings on an invalid build whose 4 bad patches are at its ends). Around each node
   // inside the wall the four corners add up to a full turn, as on a flat surface.
   using Layout = PI::Polycube_layout<Point>;
   const Layout blade = PI::Cuboid_decomposition<Mesh>()(load(data("blade.off")));
