@@ -104,6 +104,15 @@ std::vector<std::array<double, 4>> surface_corner_angles(const Polycube_layout<P
   return angles;
 }
 
+/// The points of the layout's nodes, in order.
+template <class Point_3>
+std::vector<Point_3> node_points(const Polycube_layout<Point_3>& L)
+{
+  std::vector<Point_3> out;
+  for(auto v : L.nodes) out.push_back(L.mesh.point(v));
+  return out;
+}
+
 /// A fraction as a percentage with 3 significant digits.
 inline std::string percent_text(double fraction) { return short_number(100. * fraction) + "%"; }
 
@@ -201,36 +210,26 @@ struct Trivariate_model
   bool stretch_attempted = false;
   /// The rounds of stretch reduction of the kept volume's patch maps (0: plain mean-value).
   int stretch_rounds = 0;
+  /// The layout's belt phase (Cuboid_decomposition's `belt_phase`; see `belt_phases` in
+  /// build_trivariate_model()).
+  double belt_phase = 0.;
 
   /// True when every patch's det J is certified positive and the boundary is within
   /// `maximum_boundary_distance` of the mesh.
   bool is_valid() const { return invalidity_reasons().empty(); }
 };
 
-/// \ingroup PkgPolycubeIGARef
-/// Runs the whole chain. `progress`, when set, is told the name of each stage as it starts.
-/// Named parameters: those of Surface_topology, Pants_decomposition, Cuboid_decomposition
-/// and layout_volume() (grid_resolution, spline_degree, number_of_spans, boundary_layer
-/// (default 0.25 here; 0 for one volume patch per cuboid), maximum_cuboid_aspect (2 here),
-/// untangle_volume (true here), ...), `maximum_refinements` (the cuboid stage's, default 2),
-/// `maximum_boundary_distance` (0.02: the model is
-/// not valid when its boundary is farther from the mesh than this fraction of the mesh's
-/// bounding-box diagonal) and `maximum_grid_resolution` (twice grid_resolution: an invalid
-/// volume is rebuilt on grids twice as fine up to this; equal to grid_resolution, never) and
-/// `minimum_grid_resolution` (half grid_resolution if that is 8 or more, else
-/// grid_resolution: a volume still invalid is then rebuilt on grids half as fine down to this).
-/// `grid_relaxation_sweeps` (100) and `stretch_rounds` (3) are those of the second and third
-/// attempts: relaxed surface grids when the first volume is invalid, stretch-reduced patch
-/// maps when the volume is then too far from the mesh (0: no such attempt). The finer grids
-/// combine those of the two that served their ends (the stretch with four times the rounds
-/// per doubling). `untangle_invalid_result` (true): when no grid gives a valid volume and the
-/// first one cannot become valid by untangling (boundary too far or turned over), untangle it
-/// all the same, for the best invalid result; false returns it as built, sooner (the CLI does
-/// so unless `--allow-invalid`, since it writes no invalid volume).
-/// Throws the stages' errors; an invalid layout becomes Internal_error("invalid_layout").
-template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
-auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values(),
-                            const std::function<void(const std::string&)>& progress = {})
+namespace internal {
+
+/// build_trivariate_model() on the layout of one belt phase (`belt_phase` of
+/// Cuboid_decomposition), untangling an invalid result at the end only if `untangle_invalid`.
+/// Returns nothing, having built no volume, if the layout's nodes are `unless_nodes` (the
+/// phase does not change the layout: a box laid out on its own edges).
+template <class TriangleMesh, class NamedParameters>
+std::optional<Trivariate_model<typename Cuboid_decomposition<TriangleMesh>::Point>>
+build_at_belt_phase(const TriangleMesh& tm, const NamedParameters& np, const std::function<void(const std::string&)>& progress,
+                    double belt_phase, bool untangle_invalid,
+                    const std::vector<typename Cuboid_decomposition<TriangleMesh>::Point>* unless_nodes)
 {
   using Decomposition = Cuboid_decomposition<TriangleMesh>;
   Trivariate_model<typename Decomposition::Point> model;
@@ -278,8 +277,10 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
                                          .cut_criterion(option(np, internal_np::cut_criterion, Cut_criterion::LENGTH))
                                          .symmetry_plane(option(np, internal_np::symmetry_plane, Cut_criterion_options().symmetry_plane))
                                          .criterion_strength(option(np, internal_np::criterion_strength, 1.0))
-                                         .maximum_refinements(option(np, internal_np::maximum_refinements, 2)));
+                                         .maximum_refinements(option(np, internal_np::maximum_refinements, 2))
+                                         .belt_phase(belt_phase));
   });
+  if(unless_nodes && node_points(model.layout) == *unless_nodes) return std::nullopt;
   if(model.layout.turned_outwards)
     model.warnings.push_back("the input's faces point into the solid; the layout and the volume use them turned outwards");
   stage("layout validation", [&] { model.layout_validation = model.layout.validate(); });
@@ -478,7 +479,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   for(int N = first_grid / 2; N >= minimum_grid && worth_retrying(); N /= 2)
     if(!retry_on_grid(N)) break;
   if(first_grid_hopeless && worth_retrying()) { // none was valid
-    if(option(np, internal_np::untangle_invalid_result, true))
+    if(untangle_invalid)
       untangle_first_grid();
     else if(untangle)
       model.warnings.push_back("not untangled (untangle_invalid_result is false): no untangling makes this volume valid: " +
@@ -540,6 +541,80 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
                                  internal::triple_text(b.lower_bound_at[0], b.lower_bound_at[1], b.lower_bound_at[2]) +
                                  ", the point " + internal::triple_text(x.x(), x.y(), x.z()) + ")");
       }
+  model.belt_phase = belt_phase;
+  return model;
+}
+
+} // namespace internal
+
+/// \ingroup PkgPolycubeIGARef
+/// Runs the whole chain. `progress`, when set, is told the name of each stage as it starts.
+/// Named parameters: those of Surface_topology, Pants_decomposition, Cuboid_decomposition
+/// and layout_volume() (grid_resolution, spline_degree, number_of_spans, boundary_layer
+/// (default 0.25 here; 0 for one volume patch per cuboid), maximum_cuboid_aspect (2 here),
+/// untangle_volume (true here), ...), `maximum_refinements` (the cuboid stage's, default 2),
+/// `maximum_boundary_distance` (0.02: the model is
+/// not valid when its boundary is farther from the mesh than this fraction of the mesh's
+/// bounding-box diagonal) and `maximum_grid_resolution` (twice grid_resolution: an invalid
+/// volume is rebuilt on grids twice as fine up to this; equal to grid_resolution, never) and
+/// `minimum_grid_resolution` (half grid_resolution if that is 8 or more, else
+/// grid_resolution: a volume still invalid is then rebuilt on grids half as fine down to this).
+/// `grid_relaxation_sweeps` (100) and `stretch_rounds` (3) are those of the second and third
+/// attempts: relaxed surface grids when the first volume is invalid, stretch-reduced patch
+/// maps when the volume is then too far from the mesh (0: no such attempt). The finer grids
+/// combine those of the two that served their ends (the stretch with four times the rounds
+/// per doubling). `untangle_invalid_result` (true): when no grid gives a valid volume and the
+/// first one cannot become valid by untangling (boundary too far or turned over), untangle it
+/// all the same, for the best invalid result; false returns it as built, sooner (the CLI does
+/// so unless `--allow-invalid`, since it writes no invalid volume).
+/// `belt_phases` (4, at most 8): a closed genus-0 surface whose volume is not valid is built
+/// again on layouts whose belt nodes are moved by 1/8, 2/8, ... of the zigzag's period
+/// (Cuboid_decomposition's `belt_phase`), and the first valid one is kept; 1: never.
+/// Throws the stages' errors; an invalid layout becomes Internal_error("invalid_layout").
+template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
+auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values(),
+                            const std::function<void(const std::string&)>& progress = {})
+{
+  const int phases = int(option(np, internal_np::belt_phases, 4));
+  if(phases < 1 || phases > 8) throw Invalid_input_error("invalid_parameter", "belt_phases must be from 1 to 8");
+  const bool untangle_invalid = option(np, internal_np::untangle_invalid_result, true);
+  // Which cube corners of a closed genus-0 surface land in hollows or on ridges depends on
+  // where the belt's zigzag starts, and validity with it: of the 30 femurs of
+  // population/femur, 27 are valid at phase 0, and S014, S018, S027 at 1/8, 1/8, 2/8. Any
+  // valid one will do; an invalid result is phase 0's, untangled at the end if asked (so
+  // built again: the phases before it spare that untangling, which no other phase needs).
+  auto model = *internal::build_at_belt_phase(tm, np, progress, 0., untangle_invalid && phases == 1, nullptr);
+  if(model.is_valid() || model.layout.layout_class != Layout_class::sphere || phases == 1) return model;
+  const auto phase0_nodes = internal::node_points(model.layout);
+  std::vector<std::pair<std::string, double>> seconds;
+  auto add_seconds = [&](const auto& m, const std::string& phase) {
+    for(const auto& s : m.stage_seconds) seconds.push_back({s.first + ", belt phase " + phase, s.second});
+  };
+  add_seconds(model, "0");
+  std::string tried;
+  for(int k = 1; k < phases; ++k) {
+    const std::string phase = std::to_string(k) + "/8";
+    auto other = internal::build_at_belt_phase(tm, np, progress, k / 8., false, &phase0_nodes);
+    if(!other) break; // the same layout at every phase
+    tried += (tried.empty() ? "" : ", ") + phase;
+    if(other->is_valid()) {
+      std::string why;
+      for(const auto& x : model.invalidity_reasons()) why += (why.empty() ? "" : ", ") + x;
+      other->warnings.insert(other->warnings.begin(), "the layout's belt nodes are moved by " + phase +
+                                                         " of the zigzag's period: " +
+                                                         (k > 1 ? "at phases 0 to " + std::to_string(k - 1) + "/8 no volume"
+                                                                : std::string("at phase 0 the volume")) +
+                                                         " was valid (phase 0: " + why + ")");
+      seconds.insert(seconds.end(), other->stage_seconds.begin(), other->stage_seconds.end());
+      other->stage_seconds = std::move(seconds);
+      return std::move(*other);
+    }
+    add_seconds(*other, phase);
+  }
+  if(untangle_invalid) model = *internal::build_at_belt_phase(tm, np, progress, 0., true, nullptr);
+  if(!tried.empty()) model.warnings.push_back("belt phases " + tried + " of the zigzag's period were tried too and gave no valid volume");
+  for(const auto& s : model.stage_seconds) seconds.push_back(s);
+  model.stage_seconds = std::move(seconds);
   return model;
 }
 

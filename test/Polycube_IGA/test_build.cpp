@@ -486,6 +486,29 @@ TEST_CASE("build's finer grid combines the relaxed grids and stretch-reduced map
   CHECK(said);
 }
 
+TEST_CASE("build moves a femur's belt nodes when its first layout gives no valid volume", "[build]")
+{
+  // femur_S014.ply (population femur, genus 0): with the belt nodes where they start, a cube
+  // corner lies in a hollow (a 224-degree corner) and no grid gives a valid volume; moved by
+  // an eighth of the zigzag's period, the volume is valid at 32 samples.
+  const Mesh m = load(data("femur_S014.ply"));
+  const auto first = PI::build_trivariate_model(m, PI::parameters::belt_phases(1).untangle_invalid_result(false));
+  CHECK_FALSE(first.is_valid());
+  CHECK(first.belt_phase == 0.);
+  const auto model = PI::build_trivariate_model(m);
+  CHECK(model.layout.layout_class == PI::Layout_class::sphere);
+  CHECK(model.belt_phase == 0.125);
+  check_valid_volume(model, 0.02, 0.02);
+  REQUIRE_FALSE(model.warnings.empty());
+  CHECK(model.warnings.front().find("belt nodes are moved by 1/8") != std::string::npos);
+  // The seconds of the phase tried first are kept, named.
+  bool phase0 = false;
+  for(const auto& s : model.stage_seconds) phase0 = phase0 || s.first == "cuboid decomposition, belt phase 0";
+  CHECK(phase0);
+  CHECK_THROWS_AS(PI::build_trivariate_model(m, PI::parameters::belt_phases(9)), PI::Invalid_input_error);
+  CHECK_THROWS_AS(PI::build_trivariate_model(m, PI::parameters::belt_phases(0)), PI::Invalid_input_error);
+}
+
 TEST_CASE("build does not untangle a finer grid that cannot become valid, and says why", "[build]")
 {
   // head.off at 8 samples, retried at 16, with its eye holes' tips left sharp (rounded, the

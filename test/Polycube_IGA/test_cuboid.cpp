@@ -62,6 +62,33 @@ TEST_CASE("cuboid decomposition of a sphere is one cube", "[cuboid]")
   check_layout(m, L);
 }
 
+TEST_CASE("the sphere's belt phase moves its six belt nodes along the belt, not a box's corners", "[cuboid]")
+{
+  // sphere.off: the belt's zigzag has period a third of the belt, 2 nodes per period; moved
+  // by half a period, every belt node moves (by about a twelfth of the belt) and the two
+  // cube corners off the belt stay apart from them. The layout stays valid.
+  const Mesh m = load(data("sphere.off"));
+  const Layout L0 = decompose(m);
+  const Layout L1 = PI::Cuboid_decomposition<Mesh>()(m, PI::parameters::belt_phase(0.5));
+  check_layout(m, L1);
+  REQUIRE(L0.nodes.size() == 8);
+  REQUIRE(L1.nodes.size() == 8);
+  std::size_t moved = 0;
+  for(std::size_t n = 0; n < 8; ++n) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for(std::size_t k = 0; k < 8; ++k) nearest = std::min(nearest, std::sqrt(CGAL::squared_distance(L0.mesh.point(L0.nodes[n]), L1.mesh.point(L1.nodes[k]))));
+    if(nearest > 0.1) ++moved; // sphere.off has radius 1: a twelfth of a great circle is 0.52
+  }
+  CHECK(moved >= 6);
+  CHECK_THROWS_AS(PI::Cuboid_decomposition<Mesh>()(m, PI::parameters::belt_phase(1.0)), PI::Invalid_input_error);
+  CHECK_THROWS_AS(PI::Cuboid_decomposition<Mesh>()(m, PI::parameters::belt_phase(-0.1)), PI::Invalid_input_error);
+  // A box from CAD is laid out on its own edges, whatever the phase.
+  const Mesh box = load(data("cube-meshed.off"));
+  const Layout B0 = decompose(box), B1 = PI::Cuboid_decomposition<Mesh>()(box, PI::parameters::belt_phase(0.5));
+  REQUIRE(B0.nodes.size() == B1.nodes.size());
+  for(std::size_t n = 0; n < B0.nodes.size(); ++n) CHECK(B0.mesh.point(B0.nodes[n]) == B1.mesh.point(B1.nodes[n]));
+}
+
 TEST_CASE("sharp edges form the curves of a box, none on a smooth mesh, loops on a turned part", "[cuboid][features]")
 {
   auto curves_of = [](const char* name) {

@@ -89,6 +89,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("relaxed_grids", V.relaxation.sweeps > 0)
       .member("stretch_attempted", model.stretch_attempted)
       .member("stretch_rounds", model.stretch_rounds)
+      .member("belt_phase", model.belt_phase)
       .member("relaxation_sweeps", V.relaxation.sweeps)
       .member("relaxation_last_move", V.relaxation.last_move)
       .member("valid", model.is_valid())
@@ -154,7 +155,7 @@ int run_build(const Arguments& args)
                       "--no-untangle"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
                       "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--relax-sweeps", "--stretch-rounds",
-                      "--sharp-boundary-turn"});
+                      "--sharp-boundary-turn", "--belt-phases"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
   if(out.empty()) throw PI::Invalid_input_error("bad_arguments", "build needs -o OUT.xml");
@@ -169,6 +170,7 @@ int run_build(const Arguments& args)
   const int sweeps = positive_option(a, "--relax-sweeps", 100, 0, 100000);
   const int stretch = positive_option(a, "--stretch-rounds", 3, 0, 100);
   const double sharp_turn = fraction_option(a, "--sharp-boundary-turn", 60., 0., 180.);
+  const int belt_phases = positive_option(a, "--belt-phases", 4, 1, 8);
   const bool verbose = !a.has("--quiet") && isatty(2);
   auto progress = [&](const std::string& stage) {
     if(verbose) std::cerr << "polycube_iga: " << stage << "...\n";
@@ -183,7 +185,7 @@ int run_build(const Arguments& args)
     in.mesh, PI::parameters::grid_resolution(grid).spline_degree(degree).cut_criterion(criterion).boundary_layer(layer)
       .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
       .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid)
-      .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn)
+      .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn).belt_phases(belt_phases)
       // An invalid volume is not written without --allow-invalid: no time spent improving it.
       .untangle_invalid_result(a.has("--allow-invalid")),
     progress);
@@ -230,7 +232,7 @@ Register_command build_command("build", {
   "                          [--report R.json] [--grid N] [--degree P] [--criterion length|minima|symmetry]\n"
   "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--max-grid M]\n"
   "                          [--min-grid M] [--relax-sweeps S] [--stretch-rounds R]\n"
-  "                          [--sharp-boundary-turn D] [--no-untangle] [--allow-invalid]\n"
+  "                          [--sharp-boundary-turn D] [--belt-phases K] [--no-untangle] [--allow-invalid]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
   "  --layout-vtu L    the polycube layout on the surface: patches, arcs, nodes\n"
@@ -254,6 +256,10 @@ Register_command build_command("build", {
   "                    vertex inside a layout arc, round the arc there within the vertex's two\n"
   "                    edges (default 60; 0: never): a sharp tip inside a patch side folds the\n"
   "                    slab under it\n"
+  "  --belt-phases K   a closed genus-0 surface (one cube) whose volume is not valid is built\n"
+  "                    again with the cube's six belt nodes moved along the belt by 1/8, ...,\n"
+  "                    (K-1)/8 of the zigzag's period; the first valid one is written\n"
+  "                    (default 4, at most 8; 1: never)\n"
   "  --boundary-layer T  depth of the layer of slabs under the surface, as a fraction of the\n"
   "                    shortest arc at each node (default 0.25; 0: one patch per cuboid)\n"
   "  --no-untangle     keep the constructed inner control points; by default those of patches\n"

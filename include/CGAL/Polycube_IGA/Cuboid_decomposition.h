@@ -288,7 +288,9 @@ inline int cyclic_corner(int a, int b) { return b == 0 ? a : 3 - a; }
 /// Builds the polycube layout of a surface mesh (see the file comment). Named parameters:
 /// `surface_topology` (reuse a topology result), `cut_criterion`, `symmetry_plane`,
 /// `criterion_strength` (passed to the pants stage), `maximum_refinements` (default 2:
-/// midpoint subdivisions of the whole mesh when a cut or arc finds no room).
+/// midpoint subdivisions of the whole mesh when a cut or arc finds no room), `belt_phase`
+/// (default 0, in [0, 1): on a closed genus-0 surface, how far the six belt nodes are moved
+/// along the belt, as a fraction of the zigzag's period, a third of the belt).
 template <class TriangleMesh>
 class Cuboid_decomposition
 {
@@ -304,6 +306,8 @@ public:
     using CGAL::parameters::get_parameter;
     if(num_faces(tm) == 0) throw Invalid_input_error("empty", "the mesh has no faces");
     const int max_refinements = std::max(0, int(option(np, internal_np::maximum_refinements, 2)));
+    const double belt_phase = double(option(np, internal_np::belt_phase, 0.));
+    if(!(belt_phase >= 0. && belt_phase < 1.)) throw Invalid_input_error("invalid_parameter", "belt_phase must be in [0, 1)");
     Surface_topology_result<TriangleMesh> topo = internal::given_or_computed_topology(tm, get_parameter(np, internal_np::surface_topology));
     // Where a boundary is too coarse for its corners or a half has no room for its arcs, the
     // whole surface is subdivided at edge midpoints (the shape does not change, the input's
@@ -321,7 +325,7 @@ public:
     for(int attempt = 0;; ++attempt) {
       const TriangleMesh& mesh = refined ? *refined : tm;
       try {
-        Layout L = pd ? pants_layout(tm, *pd) : layout_of(mesh, topo);
+        Layout L = pd ? pants_layout(tm, *pd) : layout_of(mesh, topo, belt_phase);
         carry_input_indices(tm, L);
         return L;
       } catch(const Internal_error& e) {
@@ -342,11 +346,11 @@ public:
 
 private:
   /// The classes with Euler characteristic >= 0, which have no pants (item 3 of the issue).
-  static Layout layout_of(const TriangleMesh& tm, const Surface_topology_result<TriangleMesh>& topo)
+  static Layout layout_of(const TriangleMesh& tm, const Surface_topology_result<TriangleMesh>& topo, double belt_phase)
   {
     const int g = topo.genus;
     const std::size_t b = topo.number_of_boundary_loops();
-    if(g == 0 && b == 0) return sphere(copy_of(tm));
+    if(g == 0 && b == 0) return sphere(copy_of(tm), belt_phase);
     if(g == 0 && b == 1) return disk(copy_of(tm));
     if(g == 0 && b == 2) return cylinder(copy_of(tm));
     return torus(tm, topo);
@@ -455,7 +459,11 @@ private:
     }
   }
 
-  static Layout sphere(Mesh m)
+  /// `phase`: the belt's zigzag and its six nodes are moved along the belt by this fraction
+  /// of the zigzag's period (a third of the belt); which cube corners land in hollows or on
+  /// ridges depends on it (femurs S014, S018, S027 of the population: invalid at 0, valid at
+  /// 1/8, 1/8 and 2/8).
+  static Layout sphere(Mesh m, double phase = 0.)
   {
     using namespace internal;
     if(std::optional<Layout> box = feature_cube(m)) return std::move(*box);
@@ -522,7 +530,7 @@ private:
         }
         const double A = (std::acos(1. / 3.) - std::acos(-1. / 3.)) / CGAL_PI * dp[std::size_t(q)];
         for(std::size_t v = 0; v < nv; ++v)
-          if(position[v] >= 0.) zigzag[v] = 0.5 * A * std::cos(6. * CGAL_PI * position[v]);
+          if(position[v] >= 0.) zigzag[v] = 0.5 * A * std::cos(6. * CGAL_PI * (position[v] - phase / 3.));
         std::vector<int> zig = sides_of(zigzag);
         if(std::count(zig.begin(), zig.end(), 0) > 0 && std::count(zig.begin(), zig.end(), 1) > 0) {
           face_side = std::move(zig);
@@ -545,7 +553,7 @@ private:
     std::vector<std::size_t> belt_index;
     for(int i = 0; i < 6; ++i) belt_index.push_back(at_arc_length(s0, 0, s0.back() * i / 6.));
     if(zigzag_cut) {
-      // The nodes are the zigzag's extremes (t = i/6), in piece 0's loop order, starting
+      // The nodes are the zigzag's extremes (t = i/6 + phase/3), in piece 0's loop order, starting
       // with one where piece 0 is narrow (its corner's neighbours): t = 0, 2/6, 4/6 when
       // piece 0 lies on the side dp - dq < shift, the others otherwise.
       std::vector<bool> on_loop(num_vertices(pieces[0]), false);
@@ -560,7 +568,7 @@ private:
         for(std::size_t k = 0; k < loops[0].size(); ++k) {
           const std::size_t v = par0[loops[0][k]];
           if(v >= nv || position[v] < 0.) continue;
-          double d = std::abs(position[v] - i / 6.);
+          double d = std::abs(position[v] - std::fmod(i / 6. + phase / 3., 1.));
           d = std::min(d, 1. - d);
           if(d < gap) { gap = d; best = k; }
         }

@@ -35,6 +35,8 @@ namespace Polycube_IGA {
   X(symmetry_plane_t, symmetry_plane)                                               \
   X(criterion_strength_t, criterion_strength)                                       \
   X(surface_topology_t, surface_topology)                                           \
+  /* cuboid decomposition */                                                        \
+  X(belt_phase_t, belt_phase)                                                       \
   /* spline fitting (lambda_1..3 of eq. 4.1) */                                     \
   X(stretching_weight_t, stretching_weight)                                         \
   X(bending_weight_t, bending_weight)                                               \
@@ -54,7 +56,8 @@ namespace Polycube_IGA {
   X(grid_relaxation_sweeps_t, grid_relaxation_sweeps)                               \
   X(maximum_boundary_distance_t, maximum_boundary_distance)                         \
   X(maximum_grid_resolution_t, maximum_grid_resolution)                             \
-  X(minimum_grid_resolution_t, minimum_grid_resolution)
+  X(minimum_grid_resolution_t, minimum_grid_resolution)                             \
+  X(belt_phases_t, belt_phases)
 
 namespace internal_np {
 #define CGAL_POLYCUBE_IGA_DECLARE_TAG(TAG, NAME) enum TAG { NAME };
