@@ -222,13 +222,14 @@ struct Trivariate_model
 namespace internal {
 
 /// build_trivariate_model() on the layout of one belt phase (`belt_phase` of
-/// Cuboid_decomposition), untangling an invalid result at the end only if `untangle_invalid`.
+/// Cuboid_decomposition), untangling an invalid result at the end if `untangle_invalid`,
+/// unless the layout is a sphere's and `other_phases_follow` (they may give a valid one).
 /// Returns nothing, having built no volume, if the layout's nodes are `unless_nodes` (the
 /// phase does not change the layout: a box laid out on its own edges).
 template <class TriangleMesh, class NamedParameters>
 std::optional<Trivariate_model<typename Cuboid_decomposition<TriangleMesh>::Point>>
 build_at_belt_phase(const TriangleMesh& tm, const NamedParameters& np, const std::function<void(const std::string&)>& progress,
-                    double belt_phase, bool untangle_invalid,
+                    double belt_phase, bool untangle_invalid, bool other_phases_follow,
                     const std::vector<typename Cuboid_decomposition<TriangleMesh>::Point>* unless_nodes)
 {
   using Decomposition = Cuboid_decomposition<TriangleMesh>;
@@ -479,7 +480,7 @@ build_at_belt_phase(const TriangleMesh& tm, const NamedParameters& np, const std
   for(int N = first_grid / 2; N >= minimum_grid && worth_retrying(); N /= 2)
     if(!retry_on_grid(N)) break;
   if(first_grid_hopeless && worth_retrying()) { // none was valid
-    if(untangle_invalid)
+    if(untangle_invalid && !(other_phases_follow && model.layout.layout_class == Layout_class::sphere))
       untangle_first_grid();
     else if(untangle)
       model.warnings.push_back("not untangled (untangle_invalid_result is false): no untangling makes this volume valid: " +
@@ -583,7 +584,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   // population/femur, 27 are valid at phase 0, and S014, S018, S027 at 1/8, 1/8, 2/8. Any
   // valid one will do; an invalid result is phase 0's, untangled at the end if asked (so
   // built again: the phases before it spare that untangling, which no other phase needs).
-  auto model = *internal::build_at_belt_phase(tm, np, progress, 0., untangle_invalid && phases == 1, nullptr);
+  auto model = *internal::build_at_belt_phase(tm, np, progress, 0., untangle_invalid, phases > 1, nullptr);
   if(model.is_valid() || model.layout.layout_class != Layout_class::sphere || phases == 1) return model;
   const auto phase0_nodes = internal::node_points(model.layout);
   std::vector<std::pair<std::string, double>> seconds;
@@ -594,7 +595,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   std::string tried;
   for(int k = 1; k < phases; ++k) {
     const std::string phase = std::to_string(k) + "/8";
-    auto other = internal::build_at_belt_phase(tm, np, progress, k / 8., false, &phase0_nodes);
+    auto other = internal::build_at_belt_phase(tm, np, progress, k / 8., false, false, &phase0_nodes);
     if(!other) break; // the same layout at every phase
     tried += (tried.empty() ? "" : ", ") + phase;
     if(other->is_valid()) {
@@ -611,7 +612,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     }
     add_seconds(*other, phase);
   }
-  if(untangle_invalid) model = *internal::build_at_belt_phase(tm, np, progress, 0., true, nullptr);
+  if(untangle_invalid) model = *internal::build_at_belt_phase(tm, np, progress, 0., true, false, nullptr);
   if(!tried.empty()) model.warnings.push_back("belt phases " + tried + " of the zigzag's period were tried too and gave no valid volume");
   for(const auto& s : model.stage_seconds) seconds.push_back(s);
   model.stage_seconds = std::move(seconds);
