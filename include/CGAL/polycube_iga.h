@@ -147,6 +147,14 @@ std::string boundary_distance_message(const Polycube_layout<Point_3>& layout, co
   return s;
 }
 
+/// The strings, separated by commas.
+inline std::string comma_list(const std::vector<std::string>& items)
+{
+  std::string list;
+  for(const auto& x : items) list += (list.empty() ? "" : ", ") + x;
+  return list;
+}
+
 /// Patches of `v` whose det J is not certified positive (all of them if not evaluated).
 inline std::size_t uncertified_patches(const Layout_volume_result& v)
 {
@@ -468,10 +476,8 @@ build_at_belt_phase(const TriangleMesh& tm, const NamedParameters& np, const std
       model.volume = std::move(r);
       model.stretch_rounds = other_grid.sampling.stretch_rounds;
     } else {
-      std::string why;
-      for(const auto& x : reasons) why += (why.empty() ? "" : ", ") + x;
       model.warnings.push_back("a grid of " + std::to_string(N) + " samples per patch side was tried too and is not valid either (" +
-                               why + ")" + (not_untangled.empty() ? "" : "; not untangled: " + not_untangled));
+                               internal::comma_list(reasons) + ")" + (not_untangled.empty() ? "" : "; not untangled: " + not_untangled));
     }
     return true;
   };
@@ -599,8 +605,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     if(!other) break; // the same layout at every phase
     tried += (tried.empty() ? "" : ", ") + phase;
     if(other->is_valid()) {
-      std::string why;
-      for(const auto& x : model.invalidity_reasons()) why += (why.empty() ? "" : ", ") + x;
+      const std::string why = internal::comma_list(model.invalidity_reasons());
       other->warnings.insert(other->warnings.begin(), "the layout's belt nodes are moved by " + phase +
                                                          " of the zigzag's period: " +
                                                          (k > 1 ? "at phases 0 to " + std::to_string(k - 1) + "/8 no volume"
