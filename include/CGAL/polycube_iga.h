@@ -231,14 +231,16 @@ namespace internal {
 
 /// build_trivariate_model() on the layout of one belt phase (`belt_phase` of
 /// Cuboid_decomposition), untangling an invalid result at the end if `untangle_invalid`,
-/// unless the layout is a sphere's and `other_phases_follow` (they may give a valid one).
+/// unless the layout is a sphere's and `other_phases_follow` (they may give a valid one):
+/// then `*untangling_deferred` says whether that untangling was left out.
 /// Returns nothing, having built no volume, if the layout's nodes are `unless_nodes` (the
 /// phase does not change the layout: a box laid out on its own edges).
 template <class TriangleMesh, class NamedParameters>
 std::optional<Trivariate_model<typename Cuboid_decomposition<TriangleMesh>::Point>>
 build_at_belt_phase(const TriangleMesh& tm, const NamedParameters& np, const std::function<void(const std::string&)>& progress,
                     double belt_phase, bool untangle_invalid, bool other_phases_follow,
-                    const std::vector<typename Cuboid_decomposition<TriangleMesh>::Point>* unless_nodes)
+                    const std::vector<typename Cuboid_decomposition<TriangleMesh>::Point>* unless_nodes,
+                    bool* untangling_deferred = nullptr)
 {
   using Decomposition = Cuboid_decomposition<TriangleMesh>;
   Trivariate_model<typename Decomposition::Point> model;
@@ -486,7 +488,9 @@ build_at_belt_phase(const TriangleMesh& tm, const NamedParameters& np, const std
   for(int N = first_grid / 2; N >= minimum_grid && worth_retrying(); N /= 2)
     if(!retry_on_grid(N)) break;
   if(first_grid_hopeless && worth_retrying()) { // none was valid
-    if(untangle_invalid && !(other_phases_follow && model.layout.layout_class == Layout_class::sphere))
+    const bool deferred = untangle && untangle_invalid && other_phases_follow && model.layout.layout_class == Layout_class::sphere;
+    if(untangling_deferred) *untangling_deferred = deferred;
+    if(untangle_invalid && !deferred)
       untangle_first_grid();
     else if(untangle)
       model.warnings.push_back("not untangled (untangle_invalid_result is false): no untangling makes this volume valid: " +
@@ -589,8 +593,9 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   // where the belt's zigzag starts, and validity with it: of the 30 femurs of
   // population/femur, 27 are valid at phase 0, and S014, S018, S027 at 1/8, 1/8, 2/8. Any
   // valid one will do; an invalid result is phase 0's, untangled at the end if asked (so
-  // built again: the phases before it spare that untangling, which no other phase needs).
-  auto model = *internal::build_at_belt_phase(tm, np, progress, 0., untangle_invalid, phases > 1, nullptr);
+  // built again, only if its untangling was deferred: the other phases do not need it).
+  bool deferred = false;
+  auto model = *internal::build_at_belt_phase(tm, np, progress, 0., untangle_invalid, phases > 1, nullptr, &deferred);
   if(model.is_valid() || model.layout.layout_class != Layout_class::sphere || phases == 1) return model;
   const auto phase0_nodes = internal::node_points(model.layout);
   std::vector<std::pair<std::string, double>> seconds;
@@ -617,9 +622,11 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     }
     add_seconds(*other, phase);
   }
-  if(untangle_invalid) model = *internal::build_at_belt_phase(tm, np, progress, 0., true, false, nullptr);
+  if(deferred) { // phase 0 again, untangled; its first build's seconds are already listed
+    model = *internal::build_at_belt_phase(tm, np, progress, 0., true, false, nullptr);
+    seconds.insert(seconds.end(), model.stage_seconds.begin(), model.stage_seconds.end());
+  }
   if(!tried.empty()) model.warnings.push_back("belt phases " + tried + " of the zigzag's period were tried too and gave no valid volume");
-  for(const auto& s : model.stage_seconds) seconds.push_back(s);
   model.stage_seconds = std::move(seconds);
   return model;
 }

@@ -505,6 +505,21 @@ TEST_CASE("build moves a femur's belt nodes when its first layout gives no valid
   bool phase0 = false;
   for(const auto& s : model.stage_seconds) phase0 = phase0 || s.first == "cuboid decomposition, belt phase 0";
   CHECK(phase0);
+  // On one grid of 16 no phase is valid: the result is phase 0's, and every phase's stages are
+  // listed once.
+  const auto none = PI::build_trivariate_model(
+    m, PI::parameters::belt_phases(2).maximum_grid_resolution(16).minimum_grid_resolution(16).untangle_invalid_result(false));
+  CHECK_FALSE(none.is_valid());
+  CHECK(none.belt_phase == 0.);
+  std::set<std::string> names;
+  for(const auto& s : none.stage_seconds) {
+    CHECK(names.insert(s.first).second);
+    CHECK(s.first.find(", belt phase ") != std::string::npos); // phase 0's stages, not again unnamed
+  }
+  CHECK(names.count("cuboid decomposition, belt phase 0") == 1);
+  CHECK(names.count("cuboid decomposition, belt phase 1/8") == 1);
+  CHECK(std::find(none.warnings.begin(), none.warnings.end(),
+                  "belt phases 1/8 of the zigzag's period were tried too and gave no valid volume") != none.warnings.end());
   CHECK_THROWS_AS(PI::build_trivariate_model(m, PI::parameters::belt_phases(9)), PI::Invalid_input_error);
   CHECK_THROWS_AS(PI::build_trivariate_model(m, PI::parameters::belt_phases(0)), PI::Invalid_input_error);
 }
