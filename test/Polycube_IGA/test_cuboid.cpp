@@ -217,6 +217,49 @@ TEST_CASE("section corners split an ellipse's turning in quarters, a circle's in
   CHECK(!PI::internal::quarter_turn_corners(ellipse(5, 1, 6)));
 }
 
+TEST_CASE("a tube's stepped end is seen along the tube, not across it", "[cuboid]")
+{
+  // An elliptic section 10 by 2 whose upper half is cut 3 lower than its lower half, as
+  // blade.off's ends are: seen from the side it encloses 30, along the tube 15.7, so its
+  // Newell normal lies 62 degrees off the tube.
+  std::vector<Eigen::Vector3d> p, normals;
+  const int n = 96;
+  for(int i = 0; i < n; ++i) {
+    const double t = 2 * M_PI * i / n, x = 5 * std::cos(t), z = std::sin(t);
+    if(i == 0) p.emplace_back(5., 3., 0.); // the step from the lower half
+    if(i == n / 2 + 1) p.emplace_back(-5., 0., 0.); // and back
+    p.emplace_back(x, z >= -1e-12 && i <= n / 2 ? 0. : 3., z);
+    normals.push_back(Eigen::Vector3d(std::cos(t) / 5, 0., std::sin(t)).normalized());
+  }
+  const Eigen::Vector3d newell = PI::internal::newell_normal(p).normalized();
+  CHECK(std::abs(newell.y()) < 0.6);
+  const auto axis = PI::internal::tube_axis(normals);
+  REQUIRE(axis);
+  CHECK(std::abs(axis->y()) > 0.999);
+  // Seen along the axis the loop is the ellipse, its quarter-turn corners in its ends.
+  const auto q = PI::internal::in_mean_plane(p, *axis);
+  REQUIRE(q);
+  Eigen::Vector2d lo = q->front(), hi = q->front();
+  for(const auto& x : *q) {
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  const Eigen::Vector2d extent = hi - lo;
+  CHECK(extent.maxCoeff() == Approx(10).epsilon(0.01));
+  CHECK(extent.minCoeff() == Approx(2).epsilon(0.01));
+  const auto c = PI::internal::quarter_turn_corners(p, *axis);
+  REQUIRE(c);
+  std::set<std::pair<bool, bool>> quadrants;
+  for(std::size_t i : *c) {
+    CHECK(std::abs(p[i].x()) > 4.7);
+    CHECK(std::abs(p[i].x()) < 5.);
+    quadrants.insert({p[i].x() > 0, p[i].z() > 0});
+  }
+  CHECK(quadrants.size() == 4);
+  // Faces that all face one way (a flat strip) give no axis.
+  CHECK(!PI::internal::tube_axis(std::vector<Eigen::Vector3d>(8, Eigen::Vector3d(0, 0, 1))));
+}
+
 TEST_CASE("cuboid decomposition of a torus is a ring of at least 3 cuboids", "[cuboid]")
 {
   for(const char* name : {"pipe.off", "torus.obj"}) {

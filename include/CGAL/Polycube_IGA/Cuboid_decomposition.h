@@ -874,24 +874,39 @@ private:
     // The seam joins the loops' nearest points, and each section's corners are at equal arc
     // lengths from it, unless that makes a section's quad skewed (a flat blade's section a
     // diamond with two flat corners) and the corners that split the loops' turning in
-    // quarters make a squarer one; then the seam joins the nearest two of those.
+    // quarters make a squarer one; then the seam joins the nearest two of those. Each loop is
+    // seen along the tube's axis there (internal::tube_axis()), not across a stepped end.
     std::array<std::vector<Eigen::Vector3d>, 2> p;
-    for(std::size_t i = 0; i < 2; ++i)
-      for(V v : loops[i]) p[i].push_back(g.position[std::size_t(v)]);
+    std::array<Eigen::Vector3d, 2> axis{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+    for(std::size_t i = 0; i < 2; ++i) {
+      std::vector<Eigen::Vector3d> normals;
+      for(V v : loops[i]) {
+        p[i].push_back(g.position[std::size_t(v)]);
+        for(auto f : CGAL::faces_around_target(halfedge(v, m), m)) {
+          if(f == Mesh::null_face()) continue;
+          const auto h = halfedge(f, m);
+          const Eigen::Vector3d& a = g.position[std::size_t(source(h, m))];
+          const Eigen::Vector3d& b = g.position[std::size_t(target(h, m))];
+          const Eigen::Vector3d& c = g.position[std::size_t(target(next(h, m), m))];
+          normals.push_back((b - a).cross(c - a));
+        }
+      }
+      if(const auto a = tube_axis(normals)) axis[i] = *a;
+    }
     std::vector<int> path = seam_between(g, loops, loops[0], loops[1]);
     std::optional<std::array<std::array<std::size_t, 4>, 2>> corner;
     if(path.size() >= 2) {
       std::array<std::optional<std::array<std::size_t, 4>>, 2> turned;
       double equal_sine = 1., turned_sine = 1.;
       for(std::size_t i = 0; i < 2; ++i) {
-        turned[i] = quarter_turn_corners(p[i]);
+        turned[i] = quarter_turn_corners(p[i], axis[i]);
         const std::vector<double> s = loop_arc_length(m, loops[i]);
         const V end(std::uint32_t(i == 0 ? path.front() : path.back()));
         const std::size_t at = std::size_t(std::find(loops[i].begin(), loops[i].end(), end) - loops[i].begin());
         std::array<std::size_t, 4> equal{};
         for(std::size_t k = 0; k < 4; ++k) equal[k] = at_arc_length(s, at, s.back() * double(k) / 4.);
-        equal_sine = std::min(equal_sine, corner_sine(p[i], equal));
-        if(turned[i]) turned_sine = std::min(turned_sine, corner_sine(p[i], *turned[i]));
+        equal_sine = std::min(equal_sine, corner_sine(p[i], equal, axis[i]));
+        if(turned[i]) turned_sine = std::min(turned_sine, corner_sine(p[i], *turned[i], axis[i]));
       }
       const double skewed = 0.7; // the sine of 44 degrees
       if(turned[0] && turned[1] && equal_sine < skewed && turned_sine > equal_sine) corner = std::array<std::array<std::size_t, 4>, 2>{{*turned[0], *turned[1]}};
