@@ -189,6 +189,23 @@ TEST_CASE("cuboid decomposition of a cylinder is a chain of cuboids", "[cuboid]"
   check_layout(m, L);
 }
 
+namespace {
+
+/// The corners `c` of the loop `p` of a section 10 wide along x: one in each quadrant of
+/// the (x, z) plane, in the rounded ends (|x| in (4.7, 5)), not on the flat sides.
+void check_corners_in_ends(const std::vector<Eigen::Vector3d>& p, const std::array<std::size_t, 4>& c)
+{
+  std::set<std::pair<bool, bool>> quadrants;
+  for(std::size_t i : c) {
+    CHECK(std::abs(p[i].x()) > 4.7);
+    CHECK(std::abs(p[i].x()) < 5.);
+    quadrants.insert({p[i].x() > 0, p[i].z() > 0});
+  }
+  CHECK(quadrants.size() == 4);
+}
+
+} // namespace
+
 TEST_CASE("section corners split an ellipse's turning in quarters, a circle's into a square", "[cuboid]")
 {
   auto ellipse = [](double a, double b, int n) {
@@ -201,13 +218,7 @@ TEST_CASE("section corners split an ellipse's turning in quarters, a circle's in
   const auto flat = ellipse(5, 1, 96);
   const auto c = PI::internal::quarter_turn_corners(flat);
   REQUIRE(c);
-  std::set<std::pair<bool, bool>> quadrants;
-  for(std::size_t i : *c) {
-    CHECK(std::abs(flat[i].x()) > 4.7);
-    CHECK(std::abs(flat[i].x()) < 5.);
-    quadrants.insert({flat[i].x() > 0, flat[i].z() > 0});
-  }
-  CHECK(quadrants.size() == 4);
+  check_corners_in_ends(flat, *c);
   // A circle: four corners a quarter apart.
   const auto d = PI::internal::quarter_turn_corners(ellipse(2, 2, 64));
   REQUIRE(d);
@@ -249,13 +260,7 @@ TEST_CASE("a tube's stepped end is seen along the tube, not across it", "[cuboid
   CHECK(extent.minCoeff() == Approx(2).epsilon(0.01));
   const auto c = PI::internal::quarter_turn_corners(p, *axis);
   REQUIRE(c);
-  std::set<std::pair<bool, bool>> quadrants;
-  for(std::size_t i : *c) {
-    CHECK(std::abs(p[i].x()) > 4.7);
-    CHECK(std::abs(p[i].x()) < 5.);
-    quadrants.insert({p[i].x() > 0, p[i].z() > 0});
-  }
-  CHECK(quadrants.size() == 4);
+  check_corners_in_ends(p, *c);
   // Faces that all face one way (a flat strip) give no axis.
   CHECK(!PI::internal::tube_axis(std::vector<Eigen::Vector3d>(8, Eigen::Vector3d(0, 0, 1))));
 }
