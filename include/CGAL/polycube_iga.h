@@ -221,6 +221,9 @@ struct Trivariate_model
   /// The layout's belt phase (Cuboid_decomposition's `belt_phase`; see `belt_phases` in
   /// build_trivariate_model()).
   double belt_phase = 0.;
+  /// True when a cylinder's section corners were moved off the steps of its cut ends
+  /// (Cuboid_decomposition's `corners_off_steps`; see `step_retry` in build_trivariate_model()).
+  bool corners_off_steps = false;
 
   /// True when every patch's det J is certified positive and the boundary is within
   /// `maximum_boundary_distance` of the mesh.
@@ -234,13 +237,14 @@ namespace internal {
 /// unless the layout is a sphere's and `other_phases_follow` (they may give a valid one):
 /// then `*untangling_deferred` says whether that untangling was left out.
 /// Returns nothing, having built no volume, if the layout's nodes are `unless_nodes` (the
-/// phase does not change the layout: a box laid out on its own edges).
+/// phase does not change the layout: a box laid out on its own edges). `corners_off_steps`
+/// is Cuboid_decomposition's.
 template <class TriangleMesh, class NamedParameters>
 std::optional<Trivariate_model<typename Cuboid_decomposition<TriangleMesh>::Point>>
 build_at_belt_phase(const TriangleMesh& tm, const NamedParameters& np, const std::function<void(const std::string&)>& progress,
                     double belt_phase, bool untangle_invalid, bool other_phases_follow,
                     const std::vector<typename Cuboid_decomposition<TriangleMesh>::Point>* unless_nodes,
-                    bool* untangling_deferred = nullptr)
+                    bool* untangling_deferred = nullptr, bool corners_off_steps = false)
 {
   using Decomposition = Cuboid_decomposition<TriangleMesh>;
   Trivariate_model<typename Decomposition::Point> model;
@@ -289,7 +293,8 @@ build_at_belt_phase(const TriangleMesh& tm, const NamedParameters& np, const std
                                          .symmetry_plane(option(np, internal_np::symmetry_plane, Cut_criterion_options().symmetry_plane))
                                          .criterion_strength(option(np, internal_np::criterion_strength, 1.0))
                                          .maximum_refinements(option(np, internal_np::maximum_refinements, 2))
-                                         .belt_phase(belt_phase));
+                                         .belt_phase(belt_phase)
+                                         .corners_off_steps(corners_off_steps));
   });
   if(unless_nodes && node_points(model.layout) == *unless_nodes) return std::nullopt;
   if(model.layout.turned_outwards)
@@ -553,6 +558,7 @@ build_at_belt_phase(const TriangleMesh& tm, const NamedParameters& np, const std
                                  ", the point " + internal::triple_text(x.x(), x.y(), x.z()) + ")");
       }
   model.belt_phase = belt_phase;
+  model.corners_off_steps = corners_off_steps;
   return model;
 }
 
@@ -581,6 +587,9 @@ build_at_belt_phase(const TriangleMesh& tm, const NamedParameters& np, const std
 /// `belt_phases` (4, at most 8): a closed genus-0 surface whose volume is not valid is built
 /// again on layouts whose belt nodes are moved by 1/8, 2/8, ... of the zigzag's period
 /// (Cuboid_decomposition's `belt_phase`), and the first valid one is kept; 1: never.
+/// `step_retry` (true): a cylinder whose volume is not valid is built again with its section
+/// corners moved off the steps of its cut ends (`corners_off_steps`), when that moves any,
+/// and that volume is kept if it is valid.
 /// Throws the stages' errors; an invalid layout becomes Internal_error("invalid_layout").
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
 auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values(),
@@ -596,8 +605,29 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   // built again, only if its untangling was deferred: the other phases do not need it).
   bool deferred = false;
   auto model = *internal::build_at_belt_phase(tm, np, progress, 0., untangle_invalid, phases > 1, nullptr, &deferred);
-  if(model.is_valid() || model.layout.layout_class != Layout_class::sphere || phases == 1) return model;
+  if(model.is_valid()) return model;
   const auto phase0_nodes = internal::node_points(model.layout);
+  // A tube cut at two heights: the seam ends, and a corner with them, at a step's end, whose
+  // side turns at once along the step. Off the steps, an elliptic tube 10 by 2 whose ends
+  // are stepped by 3 is valid at 16 samples; there, at no grid. Not the first try: blade.off
+  // (stepped ends, knife edges) is then further from valid (62 patches uncertified, not 4).
+  if(model.layout.layout_class == Layout_class::cylinder && option(np, internal_np::step_retry, true)) {
+    auto other = internal::build_at_belt_phase(tm, np, progress, 0., false, false, &phase0_nodes, nullptr, true);
+    if(!other) return model; // no corner near a step
+    if(other->is_valid()) {
+      other->warnings.insert(other->warnings.begin(), "the cylinder's section corners are moved off the steps of its cut ends: "
+                                                      "with them there the volume was not valid (" +
+                                                        internal::comma_list(model.invalidity_reasons()) + ")");
+      std::vector<std::pair<std::string, double>> seconds = model.stage_seconds;
+      for(const auto& x : other->stage_seconds) seconds.push_back({x.first + ", corners off steps", x.second});
+      other->stage_seconds = std::move(seconds);
+      return std::move(*other);
+    }
+    for(const auto& x : other->stage_seconds) model.stage_seconds.push_back({x.first + ", corners off steps", x.second});
+    model.warnings.push_back("section corners moved off the steps of the cut ends were tried too and gave no valid volume");
+    return model;
+  }
+  if(model.layout.layout_class != Layout_class::sphere || phases == 1) return model;
   std::vector<std::pair<std::string, double>> seconds;
   auto add_seconds = [&](const auto& m, const std::string& phase) {
     for(const auto& s : m.stage_seconds) seconds.push_back({s.first + ", belt phase " + phase, s.second});

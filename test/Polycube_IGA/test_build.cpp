@@ -331,6 +331,41 @@ TEST_CASE("build lays a flat blade's sections out as rectangles with corners in 
   check_valid_volume(model, 0.2, 0.02);
 }
 
+TEST_CASE("build moves a cylinder's section corners off the steps of its cut ends when they leave it invalid", "[build]")
+{
+  // Sections 10 by 2, ends cut at two heights 3 apart. The seam joins the loops' nearest
+  // points, the ends of a step, and a corner there has a side that turns at once along the
+  // step: not valid at any grid (2 patches uncertified, 68 s); off the steps, valid at 16.
+  std::istringstream in(blade_off(5, 1, 30, 64, 30, 2, 3));
+  Mesh tube;
+  REQUIRE(CGAL::IO::read_OFF(in, tube));
+  const auto one_grid = PI::parameters::maximum_grid_resolution(16).minimum_grid_resolution(16).grid_relaxation_sweeps(0)
+                          .untangle_invalid_result(false);
+  const auto first = PI::build_trivariate_model(tube, one_grid.step_retry(false));
+  REQUIRE(first.layout.layout_class == PI::Layout_class::cylinder);
+  CHECK(!first.is_valid());
+  CHECK(!first.corners_off_steps);
+  const auto model = PI::build_trivariate_model(tube, one_grid);
+  CHECK(model.corners_off_steps);
+  REQUIRE(!model.warnings.empty());
+  CHECK(model.warnings.front().find("moved off the steps") != std::string::npos);
+  check_valid_volume(model, 0.01, 0.02);
+  // The end nodes are off the steps, which are at x = +-5, where the halves meet.
+  std::size_t on_ends = 0;
+  for(auto v : model.layout.nodes) {
+    const auto& p = model.layout.mesh.point(v);
+    if(p.y() > 3 + 1e-9 && p.y() < 27 - 1e-9) continue;
+    ++on_ends;
+    CHECK(std::abs(p.x()) < 4.9);
+  }
+  CHECK(on_ends == 8);
+  // The first try's stages are listed, then the second's, named.
+  std::size_t named = 0;
+  for(const auto& s : model.stage_seconds) named += s.first.find(", corners off steps") != std::string::npos;
+  CHECK(named > 0);
+  CHECK(named < model.stage_seconds.size());
+}
+
 TEST_CASE("build keeps a square tube's section corners at equal arc lengths", "[build]")
 {
   // Sections with 4-fold symmetry: every quarter-turn offset gives a square, and the first

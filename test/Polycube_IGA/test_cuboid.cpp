@@ -265,6 +265,37 @@ TEST_CASE("a tube's stepped end is seen along the tube, not across it", "[cuboid
   CHECK(!PI::internal::tube_axis(std::vector<Eigen::Vector3d>(8, Eigen::Vector3d(0, 0, 1))));
 }
 
+TEST_CASE("corners_off_steps moves a cylinder's end corners off the steps of its loops and no others", "[cuboid]")
+{
+  auto tube = [](int step) {
+    std::istringstream in(blade_off(5, 1, 30, 64, 30, 2, step));
+    Mesh m;
+    REQUIRE(CGAL::IO::read_OFF(in, m));
+    return m;
+  };
+  auto end_nodes = [](const Layout& L) {
+    std::vector<Point> out;
+    for(auto v : L.nodes) {
+      const Point& p = L.mesh.point(v);
+      if(p.y() < 3 + 1e-9 || p.y() > 27 - 1e-9) out.push_back(p);
+    }
+    return out;
+  };
+  // Ends cut at two heights 3 apart, the halves meeting at x = +-5: the steps.
+  const Mesh stepped = tube(3);
+  const Layout L0 = decompose(stepped);
+  const Layout L1 = PI::Cuboid_decomposition<Mesh>()(stepped, PI::parameters::corners_off_steps(true));
+  check_layout(stepped, L1);
+  CHECK(L1.cuboids.size() == L0.cuboids.size());
+  const auto e0 = end_nodes(L0), e1 = end_nodes(L1);
+  REQUIRE(e1.size() == 8);
+  CHECK(std::any_of(e0.begin(), e0.end(), [](const Point& p) { return std::abs(p.x()) > 4.99; }));
+  for(const Point& p : e1) CHECK(std::abs(p.x()) < 4.9); // 1/16 of the loop (1.3) from the steps
+  // Flat ends have no steps: the same layout.
+  const Mesh flat = tube(0);
+  CHECK(end_nodes(PI::Cuboid_decomposition<Mesh>()(flat, PI::parameters::corners_off_steps(true))) == end_nodes(decompose(flat)));
+}
+
 TEST_CASE("cuboid decomposition of a torus is a ring of at least 3 cuboids", "[cuboid]")
 {
   for(const char* name : {"pipe.off", "torus.obj"}) {

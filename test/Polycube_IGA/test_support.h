@@ -151,19 +151,27 @@ inline std::string torus_off(double R, double r, int n, int m)
 /// An open straight blade along y, `length` long, `rings` + 1 rings of `around` vertices:
 /// each section the ellipse x = a cos t, z = b sin t (a flat blade for b << a), or with
 /// `power` p the superellipse |x/a|^p + |z/b|^p = 1 (p = 4: a square with round corners).
-inline std::string blade_off(double a, double b, double length, int around, int rings, double power = 2)
+/// With `step` > 0 the ends are stepped: the half z < 0 starts `step` rings later than the
+/// half z > 0, and the half z > 0 ends `step` rings earlier.
+inline std::string blade_off(double a, double b, double length, int around, int rings, double power = 2, int step = 0)
 {
   std::vector<std::array<double, 3>> points;
   std::vector<Polygon> tris;
-  for(int j = 0; j <= rings; ++j)
-    for(int i = 0; i < around; ++i) {
-      const double t = -2 * M_PI * i / around; // faces outwards
+  std::vector<std::size_t> index(std::size_t((rings + 1) * around), std::size_t(-1));
+  auto id = [&](int i, int j) {
+    const std::size_t k = std::size_t(j * around + (i + around) % around);
+    if(index[k] == std::size_t(-1)) {
+      const double t = -2 * M_PI * ((i + around) % around) / around; // faces outwards
       const double r = std::pow(std::pow(std::abs(std::cos(t)), power) + std::pow(std::abs(std::sin(t)), power), -1 / power);
+      index[k] = points.size();
       points.push_back({a * r * std::cos(t), length * j / rings, b * r * std::sin(t)});
     }
-  auto id = [&](int i, int j) { return std::size_t(j * around + (i + around) % around); };
+    return index[k];
+  };
   for(int j = 0; j < rings; ++j)
     for(int i = 0; i < around; ++i) {
+      const bool upper = std::sin(-2 * M_PI * (i + 0.5) / around) > 0;
+      if(upper ? j >= rings - step : j < step) continue;
       tris.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
       tris.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }

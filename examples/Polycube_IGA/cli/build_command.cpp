@@ -90,6 +90,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("stretch_attempted", model.stretch_attempted)
       .member("stretch_rounds", model.stretch_rounds)
       .member("belt_phase", model.belt_phase)
+      .member("corners_off_steps", model.corners_off_steps)
       .member("relaxation_sweeps", V.relaxation.sweeps)
       .member("relaxation_last_move", V.relaxation.last_move)
       .member("valid", model.is_valid())
@@ -152,7 +153,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
 int run_build(const Arguments& args)
 {
   Parsed_arguments a(args, {"--merge-duplicates", "--drop-isolated", "--no-self-intersection-test", "--allow-invalid", "--quiet",
-                      "--no-untangle"},
+                      "--no-untangle", "--no-step-retry"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
                       "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--relax-sweeps", "--stretch-rounds",
                       "--sharp-boundary-turn", "--belt-phases"});
@@ -186,6 +187,7 @@ int run_build(const Arguments& args)
       .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
       .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid)
       .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn).belt_phases(belt_phases)
+      .step_retry(!a.has("--no-step-retry"))
       // An invalid volume is not written without --allow-invalid: no time spent improving it.
       .untangle_invalid_result(a.has("--allow-invalid")),
     progress);
@@ -232,7 +234,8 @@ Register_command build_command("build", {
   "                          [--report R.json] [--grid N] [--degree P] [--criterion length|minima|symmetry]\n"
   "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--max-grid M]\n"
   "                          [--min-grid M] [--relax-sweeps S] [--stretch-rounds R]\n"
-  "                          [--sharp-boundary-turn D] [--belt-phases K] [--no-untangle] [--allow-invalid]\n"
+  "                          [--sharp-boundary-turn D] [--belt-phases K] [--no-step-retry] [--no-untangle]\n"
+  "                          [--allow-invalid]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
   "  --layout-vtu L    the polycube layout on the surface: patches, arcs, nodes\n"
@@ -260,6 +263,9 @@ Register_command build_command("build", {
   "                    again with the cube's six belt nodes moved along the belt by 1/8, ...,\n"
   "                    (K-1)/8 of the zigzag's period; the first valid one is written\n"
   "                    (default 4, at most 8; 1: never)\n"
+  "  --no-step-retry   a cylinder (two boundary loops) whose volume is not valid is by default built\n"
+  "                    again with its section corners moved off the steps of its cut ends, if any\n"
+  "                    is near one; this never does\n"
   "  --boundary-layer T  depth of the layer of slabs under the surface, as a fraction of the\n"
   "                    shortest arc at each node (default 0.25; 0: one patch per cuboid)\n"
   "  --no-untangle     keep the constructed inner control points; by default those of patches\n"

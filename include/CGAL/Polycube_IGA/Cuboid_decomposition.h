@@ -124,6 +124,65 @@ inline std::size_t at_arc_length(const std::vector<double>& s, std::size_t from,
   return best;
 }
 
+/// Turning, in degrees, of the mesh's border at its vertex `v` within the surface: 180 minus
+/// the angles of its faces there (0 where the border runs straight, 90 at a square notch's
+/// corner, -90 at a square step's).
+template <class P>
+double border_turn(const Piece_mesh<P>& m, typename Piece_mesh<P>::Vertex_index v)
+{
+  double sum = 0.;
+  for(auto h : CGAL::halfedges_around_target(halfedge(v, m), m)) {
+    if(is_border(h, m)) continue;
+    const auto a = m.point(source(h, m)) - m.point(v), b = m.point(target(next(h, m), m)) - m.point(v);
+    const double la = std::sqrt(CGAL::to_double(a.squared_length())), lb = std::sqrt(CGAL::to_double(b.squared_length()));
+    if(la > 0. && lb > 0.) sum += std::acos(std::clamp(CGAL::to_double(a * b) / (la * lb), -1., 1.));
+  }
+  return 180. - sum * 180. / CGAL_PI;
+}
+
+/// The corners `c` (loop indices, `s` as loop_arc_length()), each one that is within 1/16 of
+/// the loop of a step (a vertex where the border turns by over 45 degrees within the surface,
+/// border_turn()) moved to the nearest vertex that is not, and is 1/8 of the loop from the
+/// other corners; empty if none moved. A corner at a step's end has a side that turns at once
+/// along the step: blade.off's is a corner of 172 degrees on the surface.
+template <class P>
+std::optional<std::array<std::size_t, 4>> clear_of_steps(const Piece_mesh<P>& m,
+                                                         const std::vector<typename Piece_mesh<P>::Vertex_index>& loop,
+                                                         const std::vector<double>& s, std::array<std::size_t, 4> c)
+{
+  const std::size_t n = loop.size();
+  const double total = s.back();
+  auto gap = [&](std::size_t i, std::size_t j) {
+    const double g = std::abs(s[i] - s[j]);
+    return std::min(g, total - g);
+  };
+  std::vector<std::size_t> steps;
+  for(std::size_t i = 0; i < n; ++i)
+    if(std::abs(border_turn(m, loop[i])) > 45.) steps.push_back(i);
+  auto clear = [&](std::size_t i) {
+    for(std::size_t j : steps)
+      if(gap(i, j) < total / 16.) return false;
+    return true;
+  };
+  bool moved = false;
+  for(std::size_t k = 0; k < 4; ++k) {
+    if(clear(c[k])) continue;
+    std::size_t best = n;
+    for(std::size_t i = 0; i < n; ++i) {
+      bool apart = clear(i);
+      for(std::size_t l = 0; l < 4 && apart; ++l)
+        if(l != k && gap(i, c[l]) < total / 8.) apart = false;
+      if(apart && (best == n || gap(i, c[k]) < gap(best, c[k]))) best = i;
+    }
+    if(best == n) continue;
+    c[k] = best;
+    moved = true;
+  }
+  if(!moved) return std::nullopt;
+  std::sort(c.begin(), c.end());
+  return c;
+}
+
 /// The loop vertex within `window` of arc length of `at` where the loop runs straightest in
 /// the surface's tangent plane, when the loop turns by more than 30 degrees at `at`; else
 /// `at`. A corner on a tooth of a zigzag boundary (a mesh cut by deleting faces) gives its
@@ -290,7 +349,10 @@ inline int cyclic_corner(int a, int b) { return b == 0 ? a : 3 - a; }
 /// `criterion_strength` (passed to the pants stage), `maximum_refinements` (default 2:
 /// midpoint subdivisions of the whole mesh when a cut or arc finds no room), `belt_phase`
 /// (default 0, in [0, 1): on a closed genus-0 surface, how far the six belt nodes are moved
-/// along the belt, as a fraction of the zigzag's period, a third of the belt).
+/// along the belt, as a fraction of the zigzag's period, a third of the belt),
+/// `corners_off_steps` (default false: on a cylinder, section corners that the seam puts within
+/// 1/16 of a loop of a step of the loop, where it turns by over 45 degrees within the surface,
+/// move off it; internal::clear_of_steps()).
 template <class TriangleMesh>
 class Cuboid_decomposition
 {
@@ -307,6 +369,7 @@ public:
     if(num_faces(tm) == 0) throw Invalid_input_error("empty", "the mesh has no faces");
     const int max_refinements = std::max(0, int(option(np, internal_np::maximum_refinements, 2)));
     const double belt_phase = double(option(np, internal_np::belt_phase, 0.));
+    const bool off_steps = option(np, internal_np::corners_off_steps, false);
     if(!(belt_phase >= 0. && belt_phase < 1.)) throw Invalid_input_error("invalid_parameter", "belt_phase must be in [0, 1)");
     Surface_topology_result<TriangleMesh> topo = internal::given_or_computed_topology(tm, get_parameter(np, internal_np::surface_topology));
     // Where a boundary is too coarse for its corners or a half has no room for its arcs, the
@@ -325,7 +388,7 @@ public:
     for(int attempt = 0;; ++attempt) {
       const TriangleMesh& mesh = refined ? *refined : tm;
       try {
-        Layout L = pd ? pants_layout(tm, *pd) : layout_of(mesh, topo, belt_phase);
+        Layout L = pd ? pants_layout(tm, *pd) : layout_of(mesh, topo, belt_phase, off_steps);
         carry_input_indices(tm, L);
         return L;
       } catch(const Internal_error& e) {
@@ -346,13 +409,14 @@ public:
 
 private:
   /// The classes with Euler characteristic >= 0, which have no pants (item 3 of the issue).
-  static Layout layout_of(const TriangleMesh& tm, const Surface_topology_result<TriangleMesh>& topo, double belt_phase)
+  static Layout layout_of(const TriangleMesh& tm, const Surface_topology_result<TriangleMesh>& topo, double belt_phase,
+                          bool off_steps)
   {
     const int g = topo.genus;
     const std::size_t b = topo.number_of_boundary_loops();
     if(g == 0 && b == 0) return sphere(copy_of(tm), belt_phase);
     if(g == 0 && b == 1) return disk(copy_of(tm));
-    if(g == 0 && b == 2) return cylinder(copy_of(tm));
+    if(g == 0 && b == 2) return cylinder(copy_of(tm), off_steps);
     return torus(tm, topo);
   }
 
@@ -866,7 +930,7 @@ private:
     return shortest_vertex_path<Point>(g, roots, int(target), blocked);
   }
 
-  static Layout cylinder(Mesh m)
+  static Layout cylinder(Mesh m, bool off_steps)
   {
     using namespace internal;
     const auto loops = all_border_loops<Point>(m);
@@ -897,19 +961,29 @@ private:
     std::optional<std::array<std::array<std::size_t, 4>, 2>> corner;
     if(path.size() >= 2) {
       std::array<std::optional<std::array<std::size_t, 4>>, 2> turned;
+      std::array<std::array<std::size_t, 4>, 2> equal{};
+      bool stepped = false;
       double equal_sine = 1., turned_sine = 1.;
       for(std::size_t i = 0; i < 2; ++i) {
         turned[i] = quarter_turn_corners(p[i], axis[i]);
         const std::vector<double> s = loop_arc_length(m, loops[i]);
         const V end(std::uint32_t(i == 0 ? path.front() : path.back()));
         const std::size_t at = std::size_t(std::find(loops[i].begin(), loops[i].end(), end) - loops[i].begin());
-        std::array<std::size_t, 4> equal{};
-        for(std::size_t k = 0; k < 4; ++k) equal[k] = at_arc_length(s, at, s.back() * double(k) / 4.);
-        equal_sine = std::min(equal_sine, corner_sine(p[i], equal, axis[i]));
+        for(std::size_t k = 0; k < 4; ++k) equal[i][k] = at_arc_length(s, at, s.back() * double(k) / 4.);
+        equal_sine = std::min(equal_sine, corner_sine(p[i], equal[i], axis[i]));
         if(turned[i]) turned_sine = std::min(turned_sine, corner_sine(p[i], *turned[i], axis[i]));
+        // The seam joins the loops' nearest points, on a tube cut at two heights the ends of
+        // a step: asked, corners move off steps, where the section gets no more skewed.
+        if(off_steps)
+          if(const auto c = clear_of_steps(m, loops[i], s, equal[i]))
+            if(corner_sine(p[i], *c, axis[i]) >= corner_sine(p[i], equal[i], axis[i])) {
+              equal[i] = *c;
+              stepped = true;
+            }
       }
       const double skewed = 0.7; // the sine of 44 degrees
       if(turned[0] && turned[1] && equal_sine < skewed && turned_sine > equal_sine) corner = std::array<std::array<std::size_t, 4>, 2>{{*turned[0], *turned[1]}};
+      else if(stepped) corner = equal;
     }
     if(corner) {
       std::array<std::vector<V>, 2> ends;

@@ -37,6 +37,7 @@ namespace Polycube_IGA {
   X(surface_topology_t, surface_topology)                                           \
   /* cuboid decomposition */                                                        \
   X(belt_phase_t, belt_phase)                                                       \
+  X(corners_off_steps_t, corners_off_steps)                                         \
   /* spline fitting (lambda_1..3 of eq. 4.1) */                                     \
   X(stretching_weight_t, stretching_weight)                                         \
   X(bending_weight_t, bending_weight)                                               \
@@ -57,7 +58,8 @@ namespace Polycube_IGA {
   X(maximum_boundary_distance_t, maximum_boundary_distance)                         \
   X(maximum_grid_resolution_t, maximum_grid_resolution)                             \
   X(minimum_grid_resolution_t, minimum_grid_resolution)                             \
-  X(belt_phases_t, belt_phases)
+  X(belt_phases_t, belt_phases)                                                     \
+  X(step_retry_t, step_retry)
 
 namespace internal_np {
 #define CGAL_POLYCUBE_IGA_DECLARE_TAG(TAG, NAME) enum TAG { NAME };
