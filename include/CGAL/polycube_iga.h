@@ -232,19 +232,33 @@ struct Trivariate_model
 
 namespace internal {
 
-/// build_trivariate_model() on the layout of one belt phase (`belt_phase` of
-/// Cuboid_decomposition), untangling an invalid result at the end if `untangle_invalid`,
-/// unless the layout is a sphere's and `other_phases_follow` (they may give a valid one):
-/// then `*untangling_deferred` says whether that untangling was left out.
-/// Returns nothing, having built no volume, if the layout's nodes are `unless_nodes` (the
-/// phase does not change the layout: a box laid out on its own edges). `corners_off_steps`
-/// is Cuboid_decomposition's.
+/// The layout options that build_trivariate_model() varies when a volume is not valid
+/// (Cuboid_decomposition's named parameters of the same names).
+struct Layout_variant
+{
+  double belt_phase = 0.;
+  bool corners_off_steps = false;
+};
+
+/// Appends `from`'s stage seconds to `to`, each name followed by `suffix`.
+inline void append_stage_seconds(std::vector<std::pair<std::string, double>>& to,
+                                 const std::vector<std::pair<std::string, double>>& from, const std::string& suffix)
+{
+  for(const auto& x : from) to.push_back({x.first + suffix, x.second});
+}
+
+/// build_trivariate_model() on the layout `variant`, untangling an invalid result at the end
+/// if `untangle_invalid`, unless the layout is a sphere's and `other_phases_follow` (other
+/// belt phases may give a valid one): then `*untangling_deferred` says whether that
+/// untangling was left out. Returns nothing, having built no volume, if the layout's nodes
+/// are `unless_nodes` (the variant does not change the layout: a box laid out on its own
+/// edges, a cylinder with no corner near a step).
 template <class TriangleMesh, class NamedParameters>
 std::optional<Trivariate_model<typename Cuboid_decomposition<TriangleMesh>::Point>>
-build_at_belt_phase(const TriangleMesh& tm, const NamedParameters& np, const std::function<void(const std::string&)>& progress,
-                    double belt_phase, bool untangle_invalid, bool other_phases_follow,
-                    const std::vector<typename Cuboid_decomposition<TriangleMesh>::Point>* unless_nodes,
-                    bool* untangling_deferred = nullptr, bool corners_off_steps = false)
+build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::function<void(const std::string&)>& progress,
+                const Layout_variant& variant, bool untangle_invalid, bool other_phases_follow,
+                const std::vector<typename Cuboid_decomposition<TriangleMesh>::Point>* unless_nodes,
+                bool* untangling_deferred = nullptr)
 {
   using Decomposition = Cuboid_decomposition<TriangleMesh>;
   Trivariate_model<typename Decomposition::Point> model;
@@ -293,8 +307,8 @@ build_at_belt_phase(const TriangleMesh& tm, const NamedParameters& np, const std
                                          .symmetry_plane(option(np, internal_np::symmetry_plane, Cut_criterion_options().symmetry_plane))
                                          .criterion_strength(option(np, internal_np::criterion_strength, 1.0))
                                          .maximum_refinements(option(np, internal_np::maximum_refinements, 2))
-                                         .belt_phase(belt_phase)
-                                         .corners_off_steps(corners_off_steps));
+                                         .belt_phase(variant.belt_phase)
+                                         .corners_off_steps(variant.corners_off_steps));
   });
   if(unless_nodes && node_points(model.layout) == *unless_nodes) return std::nullopt;
   if(model.layout.turned_outwards)
@@ -557,8 +571,8 @@ build_at_belt_phase(const TriangleMesh& tm, const NamedParameters& np, const std
                                  internal::triple_text(b.lower_bound_at[0], b.lower_bound_at[1], b.lower_bound_at[2]) +
                                  ", the point " + internal::triple_text(x.x(), x.y(), x.z()) + ")");
       }
-  model.belt_phase = belt_phase;
-  model.corners_off_steps = corners_off_steps;
+  model.belt_phase = variant.belt_phase;
+  model.corners_off_steps = variant.corners_off_steps;
   return model;
 }
 
@@ -604,41 +618,43 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   // valid one will do; an invalid result is phase 0's, untangled at the end if asked (so
   // built again, only if its untangling was deferred: the other phases do not need it).
   bool deferred = false;
-  auto model = *internal::build_at_belt_phase(tm, np, progress, 0., untangle_invalid, phases > 1, nullptr, &deferred);
+  auto model = *internal::build_on_layout(tm, np, progress, {}, untangle_invalid, phases > 1, nullptr, &deferred);
   if(model.is_valid()) return model;
   const auto phase0_nodes = internal::node_points(model.layout);
   // A tube cut at two heights: the seam ends, and a corner with them, at a step's end, whose
   // side turns at once along the step. Off the steps, an elliptic tube 10 by 2 whose ends
   // are stepped by 3 is valid at 16 samples; there, at no grid. Not the first try: blade.off
-  // (stepped ends, knife edges) is then further from valid (62 patches uncertified, not 4).
+  // (stepped ends, knife edges) is then further from valid (65 of 105 patches uncertified
+  // before untangling at the first grid, against 52).
   if(model.layout.layout_class == Layout_class::cylinder && option(np, internal_np::step_retry, true)) {
-    auto other = internal::build_at_belt_phase(tm, np, progress, 0., false, false, &phase0_nodes, nullptr, true);
+    internal::Layout_variant off_steps;
+    off_steps.corners_off_steps = true;
+    auto other = internal::build_on_layout(tm, np, progress, off_steps, false, false, &phase0_nodes);
     if(!other) return model; // no corner near a step
     if(other->is_valid()) {
       other->warnings.insert(other->warnings.begin(), "the cylinder's section corners are moved off the steps of its cut ends: "
                                                       "with them there the volume was not valid (" +
                                                         internal::comma_list(model.invalidity_reasons()) + ")");
       std::vector<std::pair<std::string, double>> seconds = model.stage_seconds;
-      for(const auto& x : other->stage_seconds) seconds.push_back({x.first + ", corners off steps", x.second});
+      internal::append_stage_seconds(seconds, other->stage_seconds, ", corners off steps");
       other->stage_seconds = std::move(seconds);
       return std::move(*other);
     }
-    for(const auto& x : other->stage_seconds) model.stage_seconds.push_back({x.first + ", corners off steps", x.second});
+    internal::append_stage_seconds(model.stage_seconds, other->stage_seconds, ", corners off steps");
     model.warnings.push_back("section corners moved off the steps of the cut ends were tried too and gave no valid volume");
     return model;
   }
   if(model.layout.layout_class != Layout_class::sphere || phases == 1) return model;
   std::vector<std::pair<std::string, double>> seconds;
-  auto add_seconds = [&](const auto& m, const std::string& phase) {
-    for(const auto& s : m.stage_seconds) seconds.push_back({s.first + ", belt phase " + phase, s.second});
-  };
-  add_seconds(model, "0");
-  std::string tried;
+  internal::append_stage_seconds(seconds, model.stage_seconds, ", belt phase 0");
+  std::vector<std::string> tried;
   for(int k = 1; k < phases; ++k) {
     const std::string phase = std::to_string(k) + "/8";
-    auto other = internal::build_at_belt_phase(tm, np, progress, k / 8., false, false, &phase0_nodes);
+    internal::Layout_variant at_phase;
+    at_phase.belt_phase = k / 8.;
+    auto other = internal::build_on_layout(tm, np, progress, at_phase, false, false, &phase0_nodes);
     if(!other) break; // the same layout at every phase
-    tried += (tried.empty() ? "" : ", ") + phase;
+    tried.push_back(phase);
     if(other->is_valid()) {
       const std::string why = internal::comma_list(model.invalidity_reasons());
       other->warnings.insert(other->warnings.begin(), "the layout's belt nodes are moved by " + phase +
@@ -650,13 +666,14 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
       other->stage_seconds = std::move(seconds);
       return std::move(*other);
     }
-    add_seconds(*other, phase);
+    internal::append_stage_seconds(seconds, other->stage_seconds, ", belt phase " + phase);
   }
   if(deferred) { // phase 0 again, untangled; its first build's seconds are already listed
-    model = *internal::build_at_belt_phase(tm, np, progress, 0., true, false, nullptr);
+    model = *internal::build_on_layout(tm, np, progress, {}, true, false, nullptr);
     seconds.insert(seconds.end(), model.stage_seconds.begin(), model.stage_seconds.end());
   }
-  if(!tried.empty()) model.warnings.push_back("belt phases " + tried + " of the zigzag's period were tried too and gave no valid volume");
+  if(!tried.empty())
+    model.warnings.push_back("belt phases " + internal::comma_list(tried) + " of the zigzag's period were tried too and gave no valid volume");
   model.stage_seconds = std::move(seconds);
   return model;
 }

@@ -103,6 +103,14 @@ std::vector<double> loop_arc_length(const Piece_mesh<P>& m, const std::vector<ty
   return s;
 }
 
+/// Arc length between loop vertices `i` and `j` the shorter way round (`s` as
+/// loop_arc_length()).
+inline double loop_gap(const std::vector<double>& s, std::size_t i, std::size_t j)
+{
+  const double g = std::abs(s[i] - s[j]);
+  return std::min(g, s.back() - g);
+}
+
 /// Index of the loop vertex closest in arc length to `target` (taken modulo the length),
 /// measured from index `from` forwards.
 inline std::size_t at_arc_length(const std::vector<double>& s, std::size_t from, double target)
@@ -152,10 +160,7 @@ std::optional<std::array<std::size_t, 4>> clear_of_steps(const Piece_mesh<P>& m,
 {
   const std::size_t n = loop.size();
   const double total = s.back();
-  auto gap = [&](std::size_t i, std::size_t j) {
-    const double g = std::abs(s[i] - s[j]);
-    return std::min(g, total - g);
-  };
+  auto gap = [&](std::size_t i, std::size_t j) { return loop_gap(s, i, j); };
   std::vector<std::size_t> steps;
   for(std::size_t i = 0; i < n; ++i)
     if(std::abs(border_turn(m, loop[i])) > 45.) steps.push_back(i);
@@ -206,8 +211,7 @@ std::size_t straightest_near(const Mesh_graph<Piece_mesh<P>>& g, const std::vect
   if(best_turn <= 30.) return at;
   std::size_t best = at;
   for(std::size_t i = 0; i < n; ++i) {
-    double gap = std::abs(s[i] - s[at]);
-    gap = std::min(gap, s.back() - gap);
+    const double gap = loop_gap(s, i, at);
     if(gap > window) continue;
     const double t = turn(i);
     if(t < best_turn || (t == best_turn && gap < best_gap)) {
