@@ -4,6 +4,8 @@ find_dependency(CGAL 5.5)
 find_dependency(Eigen3 3.3 NO_MODULE)
 include(CGAL_Eigen3_support)
 find_dependency(Boost 1.66 COMPONENTS graph)
+# std::thread for the per-patch work of untangling and certificates (internal/parallel_for.h).
+find_dependency(Threads)
 
 # Debian's SuiteSparse 5.12 has neither a CMake config nor a .pc file for CHOLMOD, and
 # CGAL's bundled FindSuiteSparse returns a broken debug entry: find it directly.

@@ -17,6 +17,7 @@
 #include <CGAL/Polycube_IGA/Bspline_refinement.h>
 #include <CGAL/Polycube_IGA/Multipatch_volume.h>
 #include <CGAL/Polycube_IGA/internal/bernstein.h>
+#include <CGAL/Polycube_IGA/internal/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -296,11 +297,17 @@ inline Multipatch_quality evaluate_quality(const Multipatch_volume& mp, int samp
   double sum = 0.;
   const std::size_t np = mp.number_of_patches();
   const bool reuse = known && known->sampled.size() == np && known->certified.size() == np && changed.size() == np;
-  for(std::size_t c = 0; c < np; ++c) {
+  // Per patch on every core (the bound subdivides uncertified patches deeply), then
+  // accumulated in patch order.
+  q.sampled.resize(np);
+  q.certified.resize(np);
+  internal::parallel_for(np, 0, [&](std::size_t c, unsigned) {
     const Tensor_bspline_volume& v = mp.patch(c);
-    q.sampled.push_back(reuse && !changed[c] ? known->sampled[c] : sample_jacobian(v, samples_per_span));
-    q.certified.push_back(reuse && !changed[c] ? known->certified[c] : certified_jacobian_bound(v, o));
-    const Jacobian_sampling& s = q.sampled.back();
+    q.sampled[c] = reuse && !changed[c] ? known->sampled[c] : sample_jacobian(v, samples_per_span);
+    q.certified[c] = reuse && !changed[c] ? known->certified[c] : certified_jacobian_bound(v, o);
+  });
+  for(std::size_t c = 0; c < np; ++c) {
+    const Jacobian_sampling& s = q.sampled[c];
     Jacobian_sampling& a = q.overall_sampled;
     a.min_determinant = std::min(a.min_determinant, s.min_determinant);
     a.max_determinant = std::max(a.max_determinant, s.max_determinant);
@@ -308,7 +315,7 @@ inline Multipatch_quality evaluate_quality(const Multipatch_volume& mp, int samp
     sum += s.mean_scaled_jacobian * double(s.samples);
     a.samples += s.samples;
     a.nonpositive_samples += s.nonpositive_samples;
-    internal::accumulate(q.overall_certified, q.certified.back());
+    internal::accumulate(q.overall_certified, q.certified[c]);
   }
   q.overall_sampled.mean_scaled_jacobian = q.overall_sampled.samples ? sum / double(q.overall_sampled.samples) : 0.;
   q.overall_certified.certified_positive = !mp.patches().empty() && q.overall_certified.lower_bound > 0.;

@@ -23,6 +23,7 @@
 #include <CGAL/Polycube_IGA/Multipatch_volume.h>
 #include <CGAL/Polycube_IGA/Quality.h>
 #include <CGAL/Polycube_IGA/internal/lbfgs.h>
+#include <CGAL/Polycube_IGA/internal/parallel_for.h>
 
 #include <Eigen/Dense>
 
@@ -74,6 +75,9 @@ struct Volume_untangling_options
   /// of build_trivariate_model()): a pinned patch rules that out, so with this set
   /// untangle_volume() stops before its rounds, `reverted`, the volume unchanged.
   bool stop_when_pinned = false;
+  /// Threads for the per-patch work (energies, gradients, certificates); 0: one per hardware
+  /// thread. The result does not depend on it: per-patch sums are combined in patch order.
+  unsigned threads = 0;
 };
 
 /// What untangle_volume() did.
@@ -357,18 +361,25 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
   std::vector<bool> active(np, false);
   std::vector<double> sampled(np, 0.); // smallest sampled scaled Jacobian (polynomial patches)
   std::vector<bool> certified_before(np, false);
-  bool any = false;
-  for(std::size_t c = 0; c < np; ++c) {
+  const unsigned threads = internal::worker_count(o.threads);
+  std::vector<char> low(np, 0), ok_before(np, 0); // not vector<bool>: threads write them
+  internal::parallel_for(np, threads, [&](std::size_t c, unsigned) {
     const Tensor_bspline_volume& v = mv.patch(c);
     for(int d = 0; d < 3; ++d) samples[c][std::size_t(d)] = internal::span_samples_with_ends(v.knot_vector(d), o.points_per_span);
-    if(v.is_rational()) continue;
+    if(v.is_rational()) return;
     sampled[c] = internal::sampled_scaled_jacobian(v, samples[c]);
     // A patch positive at every sample can still fold between them (double-torus-example.off:
     // next to a corner, where only its neighbours' free points can help), so the certificate
     // picks patches too. A non-positive sample rules it out (and the bound is costly there).
-    certified_before[c] = sampled[c] > 0. &&
-                          (certified && certified->size() == np ? (*certified)[c].certified_positive : certified_jacobian_bound(v).certified_positive);
-    if(sampled[c] < o.scaled_jacobian_threshold || !certified_before[c]) active[c] = any = true;
+    const bool ok = sampled[c] > 0. &&
+                    (certified && certified->size() == np ? (*certified)[c].certified_positive : certified_jacobian_bound(v).certified_positive);
+    low[c] = sampled[c] < o.scaled_jacobian_threshold || !ok;
+    ok_before[c] = ok;
+  });
+  bool any = false;
+  for(std::size_t c = 0; c < np; ++c) {
+    certified_before[c] = ok_before[c] != 0;
+    if(low[c]) active[c] = any = true;
   }
   if(!any) {
     r.positive_at_samples = true;
@@ -497,52 +508,73 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
   {
     double all, movable;
   };
+  struct Scratch
+  {
+    std::vector<Eigen::Matrix3d> J, G;
+  };
+  std::vector<Scratch> scratch(threads);
   auto measure = [&](const Eigen::VectorXd& y, std::vector<std::size_t>* pinned = nullptr) {
     load(y);
-    Smallest m{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-    std::vector<Eigen::Matrix3d> J;
-    for(std::size_t c : r.patches) {
+    const double inf = std::numeric_limits<double>::infinity();
+    std::vector<Smallest> per_patch(r.patches.size(), Smallest{inf, inf});
+    std::vector<char> pin(r.patches.size(), 0);
+    internal::parallel_for(r.patches.size(), threads, [&](std::size_t t, unsigned worker) {
+      const std::size_t c = r.patches[t];
+      std::vector<Eigen::Matrix3d>& J = scratch[worker].J;
       internal::patch_jacobians(mv.patch(c).control_net_size(), samples[c], points[c], J);
-      bool pin = false;
+      Smallest& m = per_patch[t];
       for(std::size_t s = 0; s < J.size(); ++s) {
         const double D = (J[s] * Winv[c]).determinant();
         m.all = std::min(m.all, D);
         if(movable[c][s]) m.movable = std::min(m.movable, D);
-        else pin = pin || !(D > 0.);
+        else pin[t] = pin[t] || !(D > 0.);
       }
-      if(pin && pinned) pinned->push_back(c);
+    });
+    Smallest m{inf, inf};
+    for(std::size_t t = 0; t < r.patches.size(); ++t) {
+      m.all = std::min(m.all, per_patch[t].all), m.movable = std::min(m.movable, per_patch[t].movable);
+      if(pin[t] && pinned) pinned->push_back(r.patches[t]);
     }
     return m;
   };
   const double theta = o.volume_weight;
   double eps = 1.;
-  std::vector<Eigen::Matrix3d> J, G;
-  std::vector<Vector3d> dP;
+  // Per optimised patch: its terms of the energy, sample by sample, and its gradient.
+  std::vector<std::vector<double>> terms(r.patches.size());
+  std::vector<std::vector<Vector3d>> patch_gradient(r.patches.size());
   auto energy = [&](const Eigen::VectorXd& y, Eigen::VectorXd& g) {
     load(y);
-    g.setZero(y.size());
-    double E = 0.;
-    for(std::size_t c : r.patches) {
+    internal::parallel_for(r.patches.size(), threads, [&](std::size_t t, unsigned worker) {
+      const std::size_t c = r.patches[t];
+      std::vector<Eigen::Matrix3d>&J = scratch[worker].J, &G = scratch[worker].G;
       const std::array<int, 3> n = mv.patch(c).control_net_size();
       const Eigen::Matrix3d& Wi = Winv[c];
       internal::patch_jacobians(n, samples[c], points[c], J);
       G.resize(J.size());
+      terms[t].resize(J.size());
       for(std::size_t s = 0; s < J.size(); ++s) {
         const double w = internal::sample_weight(samples[c], s);
         const Eigen::Matrix3d K = J[s] * Wi;
         const double D = K.determinant(), root = std::sqrt(eps * eps + D * D), chi = internal::regularised_determinant(D, eps);
         const double dchi = chi / root, tr = K.squaredNorm(), c23 = std::cbrt(chi * chi);
         const double shape = tr / (3. * c23), volume = (D * D + 1.) / (2. * chi);
-        E += w * ((1. - theta) * shape + theta * volume);
+        terms[t][s] = w * ((1. - theta) * shape + theta * volume);
         const Eigen::Matrix3d C = internal::cofactor(K);
         const Eigen::Matrix3d GK = (1. - theta) * (2. / (3. * c23) * K - (2. / 9.) * tr / (c23 * chi) * dchi * C) +
                                    theta * (D / chi - (D * D + 1.) * dchi / (2. * chi * chi)) * C;
         G[s] = w * GK * Wi.transpose(); // dE/dJ, since K = J W^-1
       }
-      internal::patch_jacobians_adjoint(n, samples[c], G, dP);
-      for(std::size_t k = 0; k < dP.size(); ++k) {
+      internal::patch_jacobians_adjoint(n, samples[c], G, patch_gradient[t]);
+    });
+    // Summed in patch and sample order, term by term: the sums one thread forms.
+    g.setZero(y.size());
+    double E = 0.;
+    for(std::size_t t = 0; t < r.patches.size(); ++t) {
+      const std::size_t c = r.patches[t];
+      for(double e : terms[t]) E += e;
+      for(std::size_t k = 0; k < patch_gradient[t].size(); ++k) {
         const long u = unknown[offset[c] + k];
-        if(u >= 0) g.segment<3>(Eigen::Index(3 * u)) += dP[k];
+        if(u >= 0) g.segment<3>(Eigen::Index(3 * u)) += patch_gradient[t][k];
       }
     }
     return E;
@@ -584,9 +616,11 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
   };
   auto uncertified_patches = [&] {
     load(x);
+    std::vector<char> ok(r.patches.size(), 0);
+    internal::parallel_for(r.patches.size(), threads, [&](std::size_t t, unsigned) { ok[t] = certified_with(r.patches[t], points[r.patches[t]]); });
     std::vector<std::size_t> u;
-    for(std::size_t c : r.patches)
-      if(!certified_with(c, points[c])) u.push_back(c);
+    for(std::size_t t = 0; t < r.patches.size(); ++t)
+      if(!ok[t]) u.push_back(r.patches[t]);
     return u;
   };
 
