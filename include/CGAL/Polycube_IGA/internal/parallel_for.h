@@ -16,14 +16,26 @@
 #include <thread>
 #include <vector>
 
+#if defined(__linux__)
+#include <sched.h>
+#endif
+
 namespace CGAL {
 namespace Polycube_IGA {
 namespace internal {
 
-/// The number of threads to use for `requested` (0: one per hardware thread, at least 1).
+/// The number of threads to use for `requested` (0: one per core this process may run on,
+/// at least 1). On Linux the affinity mask counts, not the machine: a run pinned to one core
+/// (taskset, the benchmark driver, a container's cpuset) gets one thread, not a pool that
+/// takes turns on it.
 inline unsigned worker_count(unsigned requested)
 {
   if(requested > 0) return requested;
+#if defined(__linux__)
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if(sched_getaffinity(0, sizeof(set), &set) == 0) return unsigned(std::max(1, CPU_COUNT(&set)));
+#endif
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
