@@ -141,6 +141,16 @@ TEST_CASE("surface patch corners measure right angles on a box and none is refle
       around[sphere.patches[p].corners[std::size_t(i)]] += angles[p][std::size_t(i)];
     }
   for(double sum : around) CHECK((sum > 300. && sum < 360.));
+  // The same figures summed up: all 24 right angles on the box; on the sphere none reflex or
+  // a sliver.
+  const PI::internal::Layout_corner_statistics b = PI::internal::layout_corner_statistics(box);
+  CHECK(b.corners == 4 * box.number_of_surface_patches());
+  CHECK(b.max_deviation < 1e-6);
+  CHECK(b.slivers + b.nearly_flat + b.reflex == 0);
+  const PI::internal::Layout_corner_statistics s = PI::internal::layout_corner_statistics(sphere);
+  CHECK(s.corners == 4 * sphere.number_of_surface_patches());
+  CHECK(s.reflex + s.slivers == 0);
+  CHECK((s.mean_deviation > 0. && s.mean_deviation <= s.max_deviation && s.max_deviation < 90.));
 }
 
 TEST_CASE("surface patch corners on a thin blade are not reflex where arcs wrap around its edge", "[build]")
@@ -184,6 +194,9 @@ TEST_CASE("build CLI writes nothing invalid and always reports", "[build][cli]")
   REQUIRE(exists(report));
   CHECK(rep.find("\"genus\":2") != std::string::npos);
   CHECK(rep.find("\"cuboids\":8") != std::string::npos);
+  // eight.off's layout: 30 surface patches (120 corners), the same figures as the library's.
+  CHECK(rep.find("\"layout_corners\":{\"corners\":120,") != std::string::npos);
+  CHECK(rep.find("\"reflex\":") != std::string::npos);
   CHECK(exists(layout));
   if(r.exit_code == 0) {
     CHECK(rep.find("\"valid\":true") != std::string::npos);

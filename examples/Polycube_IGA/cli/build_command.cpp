@@ -95,6 +95,15 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("relaxation_last_move", V.relaxation.last_move)
       .member("valid", model.is_valid())
       .member("volume_written", written);
+    const PI::internal::Layout_corner_statistics corners = PI::internal::layout_corner_statistics(L);
+    w.key("layout_corners").begin_object()
+      .member("corners", corners.corners)
+      .member("mean_deviation_degrees", corners.mean_deviation)
+      .member("max_deviation_degrees", corners.max_deviation)
+      .member("slivers", corners.slivers)
+      .member("nearly_flat", corners.nearly_flat)
+      .member("reflex", corners.reflex)
+      .end_object();
     w.key("grid_attempts").begin_array();
     for(int g : model.grid_attempts) w.value(g);
     w.end_array();
