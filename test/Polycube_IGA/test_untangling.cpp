@@ -212,7 +212,7 @@ TEST_CASE("untangling gives the same points bit for bit on any number of threads
     CHECK(result[t].min_relative_determinant_after == result[0].min_relative_determinant_after);
     for(std::size_t p = 0; p < 4; ++p) CHECK(out[t].patch(p).control_points() == out[0].patch(p).control_points());
   }
-  // Quality, measured per patch on every core, is the same as well.
+  // The quality evaluation, per patch on every core, certifies the result.
   const PI::Multipatch_quality q = PI::evaluate_quality(out[0]);
   CHECK(q.overall_certified.certified_positive);
 }

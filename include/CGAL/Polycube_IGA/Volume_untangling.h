@@ -75,8 +75,9 @@ struct Volume_untangling_options
   /// of build_trivariate_model()): a pinned patch rules that out, so with this set
   /// untangle_volume() stops before its rounds, `reverted`, the volume unchanged.
   bool stop_when_pinned = false;
-  /// Threads for the per-patch work (energies, gradients, certificates); 0: one per hardware
-  /// thread. The result does not depend on it: per-patch sums are combined in patch order.
+  /// Threads for the per-patch work (energies, gradients, certificates); 0: one per core the
+  /// process may run on (internal::worker_count()). The result does not depend on it:
+  /// per-patch sums are combined in patch order.
   unsigned threads = 0;
 };
 
@@ -360,9 +361,9 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
   std::vector<std::array<internal::Direction_samples, 3>> samples(np);
   std::vector<bool> active(np, false);
   std::vector<double> sampled(np, 0.); // smallest sampled scaled Jacobian (polynomial patches)
-  std::vector<bool> certified_before(np, false);
   const unsigned threads = internal::worker_count(o.threads);
-  std::vector<char> low(np, 0), ok_before(np, 0); // not vector<bool>: threads write them
+  // Written by the threads, one entry each, so not vector<bool> (whose entries share words).
+  std::vector<char> certified_before(np, 0), low(np, 0);
   internal::parallel_for(np, threads, [&](std::size_t c, unsigned) {
     const Tensor_bspline_volume& v = mv.patch(c);
     for(int d = 0; d < 3; ++d) samples[c][std::size_t(d)] = internal::span_samples_with_ends(v.knot_vector(d), o.points_per_span);
@@ -371,16 +372,13 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
     // A patch positive at every sample can still fold between them (double-torus-example.off:
     // next to a corner, where only its neighbours' free points can help), so the certificate
     // picks patches too. A non-positive sample rules it out (and the bound is costly there).
-    const bool ok = sampled[c] > 0. &&
-                    (certified && certified->size() == np ? (*certified)[c].certified_positive : certified_jacobian_bound(v).certified_positive);
-    low[c] = sampled[c] < o.scaled_jacobian_threshold || !ok;
-    ok_before[c] = ok;
+    certified_before[c] = sampled[c] > 0. &&
+                          (certified && certified->size() == np ? (*certified)[c].certified_positive : certified_jacobian_bound(v).certified_positive);
+    low[c] = sampled[c] < o.scaled_jacobian_threshold || !certified_before[c];
   });
   bool any = false;
-  for(std::size_t c = 0; c < np; ++c) {
-    certified_before[c] = ok_before[c] != 0;
+  for(std::size_t c = 0; c < np; ++c)
     if(low[c]) active[c] = any = true;
-  }
   if(!any) {
     r.positive_at_samples = true;
     return r;

@@ -39,8 +39,8 @@ inline unsigned worker_count(unsigned requested)
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
-/// Calls f(i, worker) once for every i in [0, n), on at most `threads` threads (0: one per
-/// hardware thread); `worker` in [0, number of threads) names the calling thread, for
+/// Calls f(i, worker) once for every i in [0, n), on at most `threads` threads (0: as
+/// worker_count(0)); `worker` in [0, number of threads) names the calling thread, for
 /// per-thread scratch space. Indices are handed out in order as threads become free. If
 /// calls throw, the exception of the lowest such index is rethrown once all have ended.
 template <class F>
