@@ -194,6 +194,20 @@ inline std::size_t uncertified_patches(const Layout_volume_result& v)
                                    [](const auto& b) { return !b.certified_positive; }));
 }
 
+/// The folded boundary sides of `v` (Boundary_distance::folded_sides) on patches whose det J
+/// is not certified positive. On a certified patch the side's normal is the volume's outward
+/// normal; one that faces against its nearest mesh face there lies on a part thinner than
+/// the fit's distance to the mesh, nearer the far side (blade.off: 8 such sides, 0.65 thick,
+/// 0.3 off), not on a fold, and untangling the other patches can still make the volume valid.
+inline std::vector<Boundary_distance::Folded_side> folded_uncertified_sides(const Layout_volume_result& v)
+{
+  std::vector<Boundary_distance::Folded_side> out;
+  for(const auto& f : v.distance.folded_sides)
+    if(!v.quality_evaluated || f.side.patch >= v.quality.certified.size() || !v.quality.certified[f.side.patch].certified_positive)
+      out.push_back(f);
+  return out;
+}
+
 /// Reason codes of Trivariate_model::invalidity_reasons() for volume `v`.
 inline std::vector<std::string> invalidity_reasons(const Layout_volume_result& v, double maximum_boundary_distance)
 {
@@ -441,14 +455,15 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
   }
   // The better construction is untangled; if it stays invalid, the other one too, and the
   // one with fewer uncertified patches (its boundary no farther off the mesh) is kept.
-  // Untangling moves inner control points only: a volume whose boundary is too far from the
+  // Untangling moves no control point of a side on the surface (inner ones, and caps' in
+  // their tangent planes): a volume whose boundary is too far from the
   // mesh or turns over stays invalid whatever it does. Such a volume is untangled only if no
   // other grid below gives a valid one, for the best invalid result; before, every femur of
   // the population spent 40% of its run untangling its first grid, valid at the second.
   auto why_untangling_cannot_validate = [&](const Layout_volume_result& r) -> std::string {
     if(!(r.distance.relative <= model.maximum_boundary_distance))
       return "its boundary is " + internal::percent_text(r.distance.relative) + " of the diagonal from the mesh";
-    if(!r.distance.folded_sides.empty()) return "a boundary side turns over";
+    if(!internal::folded_uncertified_sides(r).empty()) return "a boundary side turns over";
     return "";
   };
   const bool first_grid_hopeless = model.volume.quality_evaluated && !why_untangling_cannot_validate(model.volume).empty() &&
@@ -568,9 +583,9 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
   }
   if(model.volume.quality_evaluated && !(model.volume.distance.relative <= model.maximum_boundary_distance))
     model.warnings.push_back(internal::boundary_distance_message(model.layout, model.volume.distance, model.maximum_boundary_distance));
-  // Untangling moves inner control points only: a fitted boundary face that turns over keeps
-  // its negative det J whatever it does.
-  for(const auto& f : model.volume.distance.folded_sides)
+  // Untangling moves no control point of a side on the surface: a fitted face that turns over
+  // on an uncertified patch keeps its negative det J whatever it does.
+  for(const auto& f : internal::folded_uncertified_sides(model.volume))
     model.warnings.push_back("volume patch " + std::to_string(f.side.patch) + ": its boundary side " + std::to_string(f.side.side) +
                              " turns over (" + std::to_string(f.samples) +
                              " samples face against the mesh); untangling cannot repair it, the fitted surface must change");

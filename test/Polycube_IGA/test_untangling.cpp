@@ -45,6 +45,23 @@ void add_all_boundaries(PI::Multipatch_volume& mv, std::size_t p, const std::vec
     if(std::find(except.begin(), except.end(), s) == except.end()) mv.add_boundary({p, s});
 }
 
+// The box with its points (1, j, 4) pushed along x within side w1 (z = 1): the side folds.
+PI::Tensor_bspline_volume box_folded_on_w1()
+{
+  PI::Tensor_bspline_volume v = box(0.);
+  fold(v, 1, 0.9, true);
+  return v;
+}
+
+// One patch, all six sides boundaries.
+PI::Multipatch_volume closed(const PI::Tensor_bspline_volume& v)
+{
+  PI::Multipatch_volume mv;
+  mv.add_patch(v);
+  add_all_boundaries(mv, 0);
+  return mv;
+}
+
 bool boundary_points_equal(const PI::Tensor_bspline_volume& a, const PI::Tensor_bspline_volume& b, int side)
 {
   bool same = true;
@@ -261,17 +278,40 @@ TEST_CASE("untangling leaves a valid model untouched", "[untangling]")
 TEST_CASE("untangling cannot move a fixed boundary and says so", "[untangling]")
 {
   // The fold is on side w1 (a boundary): nothing may move there, so det J stays negative.
-  PI::Multipatch_volume mv;
-  PI::Tensor_bspline_volume v = box(0.);
-  fold(v, 1, 0.9, true);
-  mv.add_patch(v);
-  add_all_boundaries(mv, 0);
+  const PI::Tensor_bspline_volume v = box_folded_on_w1();
+  PI::Multipatch_volume mv = closed(v);
   const PI::Volume_untangling_result r = PI::untangle_volume(mv);
   // The samples may end positive (3 to 5 per span miss the fold's narrow negative part), but no
   // certificate: the folded side's parameterization keeps det J <= 0 somewhere.
   CHECK_FALSE(PI::certified_jacobian_bound(mv.patch(0)).certified_positive);
   CHECK(r.min_relative_determinant_after >= r.min_relative_determinant_before);
   for(int s = 1; s <= 6; ++s) CHECK(boundary_points_equal(mv.patch(0), v, s));
+}
+
+TEST_CASE("untangling slides the points of a sliding side in its plane and repairs a fold there", "[untangling]")
+{
+  // The fold of the test above, on side w1, with w1 a sliding side (as a cap spanning a
+  // boundary loop is): its inner points move in the plane z = 1, its edge points stay.
+  const PI::Tensor_bspline_volume v = box_folded_on_w1();
+  PI::Multipatch_volume mv = closed(v);
+  const PI::Volume_untangling_result r = PI::untangle_volume(mv, PI::Volume_untangling_options(), nullptr, {{0, 6}});
+  CHECK(r.free_points == 27 + 9);
+  CHECK(r.sliding_points == 9); // the 3 x 3 inner points of w1
+  CHECK_FALSE(r.reverted);
+  CHECK(r.uncertified_patches.empty());
+  CHECK(PI::certified_jacobian_bound(mv.patch(0)).certified_positive);
+  bool in_plane = true, edge_kept = true, moved = false;
+  PI::internal::for_each_side_point(mv.patch(0), 6, [&](const std::array<int, 3>& i) {
+    const Eigen::Vector3d &now = mv.patch(0).control_point(i), &was = v.control_point(i);
+    in_plane = in_plane && now.z() == 1.;
+    const bool edge = i[0] == 0 || i[0] == 4 || i[1] == 0 || i[1] == 4;
+    if(edge) edge_kept = edge_kept && now == was;
+    else moved = moved || now != was;
+  });
+  CHECK(in_plane);
+  CHECK(edge_kept);
+  CHECK(moved);
+  for(int s = 1; s <= 5; ++s) CHECK(boundary_points_equal(mv.patch(0), v, s));
 }
 
 TEST_CASE("untangling spends no rounds on a fold that only fixed points determine", "[untangling]")

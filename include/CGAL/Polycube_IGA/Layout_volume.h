@@ -70,6 +70,11 @@ struct Layout_volume_options
   /// patches themselves have folded or reflex corners.
   bool untangle = false;
   Volume_untangling_options untangling;
+  /// Let the untangling slide the control points of the caps (sides on the layout's CAP
+  /// patches, which span input boundary loops where the mesh has nothing) in their tangent
+  /// planes, the loops themselves fixed: a planar cap stays in its plane, and a cap side
+  /// meeting the surface at a step of its loop need not keep the angle the fit gave it.
+  bool slide_caps = true;
   /// Relax the SURFACE grids as one quad mesh on the surface (Grid_relaxation.h) after the
   /// chains and before the boundary layer; maximum_sweeps = 0 (the default here) skips it.
   Grid_relaxation_options relaxation = Grid_relaxation_options::none();
@@ -233,7 +238,20 @@ void untangle_and_evaluate(const TriangleMesh& mesh, Layout_volume_result& r, co
                         r.distance_samples_per_direction == o.distance_samples_per_direction && r.quality_bound == o.bound;
   // The untangler certifies with the default options.
   const bool default_certificates = measured && o.bound == Jacobian_bound_options();
-  if(o.untangle) r.untangling = untangle_volume(r.volume, o.untangling, default_certificates ? &r.quality.certified : nullptr);
+  if(o.untangle) {
+    r.untangling = untangle_volume(r.volume, o.untangling, default_certificates ? &r.quality.certified : nullptr);
+    // A second pass from there with the caps sliding, for the patches the first left
+    // uncertified: from the start it gives other optima, at head.off's eye holes worse ones
+    // (4 patches uncertified, where the caps fixed leave none).
+    std::vector<Patch_side> caps;
+    if(o.slide_caps && !r.untangling.skipped)
+      for(const Patch_side& b : r.volume.boundaries())
+        if(std::find(r.surface_sides.begin(), r.surface_sides.end(), b) == r.surface_sides.end()) caps.push_back(b);
+    if(!caps.empty() && !r.untangling.uncertified_patches.empty()) {
+      const Volume_untangling_result second = untangle_volume(r.volume, o.untangling, nullptr, caps);
+      if(!second.skipped && !second.reverted) r.untangling.add_pass(second);
+    }
+  }
   const auto t1 = Clock::now();
   r.untangling_seconds = std::chrono::duration<double>(t1 - t0).count();
   if(!o.evaluate_quality) return;

@@ -86,6 +86,7 @@ struct Volume_untangling_result
 {
   std::vector<std::size_t> patches; ///< patches whose samples entered the energy
   std::size_t free_points = 0;      ///< control points moved (shared ones counted once)
+  std::size_t sliding_points = 0;   ///< of those, points of sliding sides, moved in their tangent plane
   int rounds = 0, iterations = 0;
   /// Smallest det(J W^-1) over the samples of those patches, before and after.
   double min_relative_determinant_before = 0., min_relative_determinant_after = 0.;
@@ -97,6 +98,28 @@ struct Volume_untangling_result
   /// The optimised points were discarded: the smallest sampled det J did not improve, or a
   /// patch whose det J was certified positive lost its certificate.
   bool reverted = false;
+  /// Optimised patches whose det J is not certified positive afterwards.
+  std::vector<std::size_t> uncertified_patches;
+  int passes = 1; ///< untangle_volume() calls merged here (add_pass())
+
+  /// Merges `next`, a later call on the same volume that was not skipped nor reverted.
+  void add_pass(const Volume_untangling_result& next)
+  {
+    std::vector<std::size_t> all = patches;
+    all.insert(all.end(), next.patches.begin(), next.patches.end());
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    patches = std::move(all);
+    free_points = std::max(free_points, next.free_points);
+    sliding_points = std::max(sliding_points, next.sliding_points);
+    rounds += next.rounds, iterations += next.iterations;
+    min_relative_determinant_after = next.min_relative_determinant_after;
+    positive_at_samples = next.positive_at_samples;
+    pinned_patches = next.pinned_patches;
+    uncertified_patches = next.uncertified_patches;
+    passes += next.passes;
+    reverted = false; // the volume moved
+  }
 };
 
 namespace internal {
@@ -333,6 +356,23 @@ void for_each_side_point(const Tensor_bspline_volume& v, int s, F&& f)
     for(i[std::size_t(d1)] = 0; i[std::size_t(d1)] < n[std::size_t(d1)]; ++i[std::size_t(d1)]) f(i);
 }
 
+/// Normal of side s of v at its control point i, from the control net: the cross product of
+/// the net's differences along the side's two directions (one-sided at its edges). Not
+/// normalised; zero where the net is degenerate.
+inline Eigen::Vector3d side_point_normal(const Tensor_bspline_volume& v, int s, const std::array<int, 3>& i)
+{
+  const int d = side_direction(s);
+  const std::array<int, 3> n = v.control_net_size();
+  Eigen::Vector3d t[2];
+  for(int e = 1; e <= 2; ++e) {
+    const std::size_t a = std::size_t((d + e) % 3);
+    std::array<int, 3> lo = i, hi = i;
+    lo[a] = std::max(0, i[a] - 1), hi[a] = std::min(n[a] - 1, i[a] + 1);
+    t[e - 1] = v.control_points()[v.linear_index(hi)] - v.control_points()[v.linear_index(lo)];
+  }
+  return t[0].cross(t[1]);
+}
+
 } // namespace internal
 
 /*!
@@ -353,7 +393,8 @@ void for_each_side_point(const Tensor_bspline_volume& v, int s, F&& f)
  */
 inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
                                                 const Volume_untangling_options& o = Volume_untangling_options(),
-                                                const std::vector<Jacobian_bound>* certified = nullptr)
+                                                const std::vector<Jacobian_bound>* certified = nullptr,
+                                                const std::vector<Patch_side>& sliding_sides = {})
 {
   using Eigen::Vector3d;
   Volume_untangling_result r;
@@ -432,18 +473,44 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
     if(!same)
       internal::for_each_side_point(b, I.second.side, [&](const std::array<int, 3>& j) { fixed[linear(I.second.patch, j)] = true; });
   }
-  for(const Patch_side& s : mv.boundaries())
-    internal::for_each_side_point(mv.patch(s.patch), s.side, [&](const std::array<int, 3>& i) { fixed[linear(s.patch, i)] = true; });
+  // Points of a sliding side keep to the plane through them normal to the side (summed over
+  // the members of their class, each turned to agree with the first); the other boundary
+  // sides fix theirs. A class whose members' normals disagree by more than 30 degrees (an
+  // edge where two sliding sides meet at an angle) is fixed too.
+  std::vector<Vector3d> side_normal(offset[np], Vector3d::Zero());
+  for(const Patch_side& s : mv.boundaries()) {
+    const bool slides = std::find(sliding_sides.begin(), sliding_sides.end(), s) != sliding_sides.end();
+    internal::for_each_side_point(mv.patch(s.patch), s.side, [&](const std::array<int, 3>& i) {
+      const std::size_t k = linear(s.patch, i);
+      if(!slides) fixed[k] = true;
+      else if(side_normal[k].isZero()) side_normal[k] = internal::side_point_normal(mv.patch(s.patch), s.side, i);
+      else fixed[k] = true; // on two sliding sides of one patch: an edge between them
+    });
+  }
   for(std::size_t c = 0; c < np; ++c)
     if(!active[c])
       for(std::size_t k = offset[c]; k < offset[c + 1]; ++k) fixed[k] = true;
-  for(std::size_t k = 0; k < fixed.size(); ++k)
-    if(fixed[k]) fixed[find(k)] = true;
+  std::vector<Vector3d> class_normal(offset[np], Vector3d::Zero());
+  for(std::size_t k = 0; k < fixed.size(); ++k) {
+    const std::size_t root = find(k);
+    if(fixed[k]) fixed[root] = true;
+    const double len = side_normal[k].norm();
+    if(!(len > 0.) || fixed[root]) continue;
+    const Vector3d m = side_normal[k] / len;
+    Vector3d& sum = class_normal[root];
+    const double cos30 = std::sqrt(3.) / 2.;
+    if(!sum.isZero() && m.dot(sum.normalized()) < cos30) {
+      if(m.dot(sum.normalized()) > -cos30) fixed[root] = true;
+      else sum -= m;
+    }
+    else sum += m;
+  }
 
   // Unknowns: one per free class, numbered in first-member order (deterministic).
+  // A sliding unknown has a unit normal: it moves in the plane through its start normal to it.
   std::vector<long> unknown_of_root(offset[np], -1), unknown(offset[np], -1);
   Eigen::VectorXd x;
-  std::vector<Vector3d> start;
+  std::vector<Vector3d> start, slide;
   for(std::size_t k = 0; k < offset[np]; ++k) {
     const std::size_t root = find(k);
     if(fixed[root]) continue;
@@ -451,9 +518,11 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
       unknown_of_root[root] = long(start.size());
       std::size_t c = std::size_t(std::upper_bound(offset.begin(), offset.end(), k) - offset.begin()) - 1;
       start.push_back(mv.patch(c).control_points()[k - offset[c]]);
+      slide.push_back(class_normal[root].isZero() ? Vector3d::Zero() : Vector3d(class_normal[root].normalized()));
     }
     unknown[k] = unknown_of_root[root];
   }
+  r.sliding_points = std::size_t(std::count_if(slide.begin(), slide.end(), [](const Vector3d& n) { return !n.isZero(); }));
   r.free_points = start.size();
   for(std::size_t c = 0; c < np; ++c)
     if(active[c]) r.patches.push_back(c);
@@ -480,11 +549,16 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
   for(std::size_t k = 0; k < start.size(); ++k) x.segment<3>(Eigen::Index(3 * k)) = start[k];
   std::vector<std::vector<Vector3d>> points(np);
   for(std::size_t c : r.patches) points[c] = mv.patch(c).control_points();
+  auto position = [&](const Eigen::VectorXd& y, long u) -> Vector3d {
+    const Vector3d p = y.segment<3>(Eigen::Index(3 * u));
+    const Vector3d& n = slide[std::size_t(u)];
+    return n.isZero() ? p : Vector3d(p - n * n.dot(p - start[std::size_t(u)]));
+  };
   auto load = [&](const Eigen::VectorXd& y) {
     for(std::size_t c : r.patches)
       for(std::size_t k = 0; k < points[c].size(); ++k) {
         const long u = unknown[offset[c] + k];
-        if(u >= 0) points[c][k] = y.segment<3>(Eigen::Index(3 * u));
+        if(u >= 0) points[c][k] = position(y, u);
       }
   };
   // Samples whose det J the free points cannot change (set by the fixed boundary alone) are
@@ -575,6 +649,11 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
         if(u >= 0) g.segment<3>(Eigen::Index(3 * u)) += patch_gradient[t][k];
       }
     }
+    for(std::size_t u = 0; u < slide.size(); ++u)
+      if(!slide[u].isZero()) {
+        const Vector3d gu = g.segment<3>(Eigen::Index(3 * u));
+        g.segment<3>(Eigen::Index(3 * u)) = gu - slide[u] * slide[u].dot(gu);
+      }
     return E;
   };
 
@@ -627,6 +706,8 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
   if(o.stop_when_pinned && !r.pinned_patches.empty()) {
     r.min_relative_determinant_after = before_rounds.all;
     r.reverted = true;
+    for(std::size_t c : r.patches)
+      if(!certified_before[c]) r.uncertified_patches.push_back(c);
     return r;
   }
   min_det = before_rounds.movable;
@@ -665,7 +746,10 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
     for(std::size_t k = 0; k < start.size(); ++k) x.segment<3>(Eigen::Index(3 * k)) = start[k];
     r.min_relative_determinant_after = r.min_relative_determinant_before;
     r.reverted = true;
-  }
+    for(std::size_t c : r.patches)
+      if(!certified_before[c]) r.uncertified_patches.push_back(c);
+  } else
+    r.uncertified_patches = uncertified;
   r.positive_at_samples = r.min_relative_determinant_after > 0.;
   load(x);
   for(std::size_t c : r.patches) mv.patch(c).control_points() = points[c];
