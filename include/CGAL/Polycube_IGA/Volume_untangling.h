@@ -389,6 +389,9 @@ inline Eigen::Vector3d side_point_normal(const Tensor_bspline_volume& v, int s, 
  * sampled det J does not improve or a patch certified valid before is not afterwards.
  * `certified`, if given, holds certified_jacobian_bound() of every patch of `mv` with
  * default options (from evaluate_quality()), which is then not computed again.
+ * `sliding_sides`, boundary sides of `mv` (caps: layout_volume()'s `slide_caps`), are not
+ * fixed: their control points move in the plane through each normal to the side, except
+ * those also on a fixed side or on an edge between two of them at more than 30 degrees.
  * Deterministic.
  */
 inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
