@@ -135,6 +135,15 @@ Boundary_distance boundary_hausdorff_distance(const Multipatch_volume& mp, const
   std::vector<double> cosine(spline_points.size(), 0.), nearest(spline_points.size(), 0.);
   double orientation = 0.;
   const auto mvpm = get(CGAL::vertex_point, mesh);
+  using face_descriptor = typename boost::graph_traits<TriangleMesh>::face_descriptor;
+  auto cosine_with = [&](face_descriptor f, std::size_t i) {
+    const auto h = halfedge(f, mesh);
+    const auto fn = CGAL::cross_product(get(mvpm, target(h, mesh)) - get(mvpm, source(h, mesh)),
+                                        get(mvpm, target(next(h, mesh), mesh)) - get(mvpm, target(h, mesh)));
+    const Eigen::Vector3d m(CGAL::to_double(fn.x()), CGAL::to_double(fn.y()), CGAL::to_double(fn.z()));
+    const double l = m.norm() * spline_normals[i].norm();
+    return l > 0. ? m.dot(spline_normals[i]) / l : 0.;
+  };
   for(std::size_t i = 0; i < spline_points.size(); ++i) {
     const Point_3& p = spline_points[i];
     const auto hit = mesh_tree.closest_point_and_primitive(p);
@@ -144,12 +153,7 @@ Boundary_distance boundary_hausdorff_distance(const Multipatch_volume& mp, const
       r.spline_to_mesh = d;
       r.farthest_spline_point = as_array(p);
     }
-    const auto h = halfedge(hit.second, mesh);
-    const auto fn = CGAL::cross_product(get(mvpm, target(h, mesh)) - get(mvpm, source(h, mesh)),
-                                        get(mvpm, target(next(h, mesh), mesh)) - get(mvpm, target(h, mesh)));
-    const Eigen::Vector3d m(CGAL::to_double(fn.x()), CGAL::to_double(fn.y()), CGAL::to_double(fn.z()));
-    const double l = m.norm() * spline_normals[i].norm();
-    if(l > 0.) cosine[i] = m.dot(spline_normals[i]) / l;
+    cosine[i] = cosine_with(hit.second, i);
     orientation += cosine[i];
   }
   // A fold: more than 120 degrees against the mesh, once the mesh's own orientation (outward
@@ -165,17 +169,13 @@ Boundary_distance boundary_hausdorff_distance(const Multipatch_volume& mp, const
     const Point_3& p = spline_points[i];
     const double R = 2. * nearest[i] + 1e-9 * r.mesh_bbox_diagonal;
     const double x = CGAL::to_double(p.x()), y = CGAL::to_double(p.y()), z = CGAL::to_double(p.z());
-    std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor> near;
+    std::vector<face_descriptor> near;
     mesh_tree.all_intersected_primitives(CGAL::Bbox_3(x - R, y - R, z - R, x + R, y + R, z + R), std::back_inserter(near));
-    for(auto f : near) {
+    for(face_descriptor f : near) {
+      if(!(sense * cosine_with(f, i) > 0.5)) continue;
       const auto h = halfedge(f, mesh);
-      const Point_3 &a = get(mvpm, source(h, mesh)), &b = get(mvpm, target(h, mesh)), &c = get(mvpm, target(next(h, mesh), mesh));
-      const auto fn = CGAL::cross_product(b - a, c - b);
-      const Eigen::Vector3d m(CGAL::to_double(fn.x()), CGAL::to_double(fn.y()), CGAL::to_double(fn.z()));
-      const double l = m.norm() * spline_normals[i].norm();
-      if(l > 0. && sense * m.dot(spline_normals[i]) / l > 0.5 &&
-         CGAL::to_double(CGAL::squared_distance(p, Triangle_3(a, b, c))) <= R * R)
-        return true;
+      const Triangle_3 t(get(mvpm, source(h, mesh)), get(mvpm, target(h, mesh)), get(mvpm, target(next(h, mesh), mesh)));
+      if(CGAL::to_double(CGAL::squared_distance(p, t)) <= R * R) return true;
     }
     return false;
   };
@@ -190,19 +190,17 @@ Boundary_distance boundary_hausdorff_distance(const Multipatch_volume& mp, const
   using Soup_tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Soup_primitive>>;
   Soup_tree soup_tree(spline_triangles.cbegin(), spline_triangles.cend());
   soup_tree.accelerate_distance_queries();
-  auto vpm = get(CGAL::vertex_point, mesh);
-  using face_descriptor = typename boost::graph_traits<TriangleMesh>::face_descriptor;
   std::vector<std::pair<Point_3, face_descriptor>> mesh_points; // with a face they lie on
   const auto face_index = CGAL::get_initialized_face_index_map(mesh);
   for(auto v : vertices(mesh)) {
     const auto h = halfedge(v, mesh);
     if(h == boost::graph_traits<TriangleMesh>::null_halfedge()) continue; // isolated
-    mesh_points.push_back({get(vpm, v), face(is_border(h, mesh) ? opposite(h, mesh) : h, mesh)});
+    mesh_points.push_back({get(mvpm, v), face(is_border(h, mesh) ? opposite(h, mesh) : h, mesh)});
   }
   for(auto f : faces(mesh)) {
     auto h = halfedge(f, mesh);
-    mesh_points.push_back({CGAL::centroid(get(vpm, source(h, mesh)), get(vpm, target(h, mesh)),
-                                          get(vpm, target(next(h, mesh), mesh))), f});
+    mesh_points.push_back({CGAL::centroid(get(mvpm, source(h, mesh)), get(mvpm, target(h, mesh)),
+                                          get(mvpm, target(next(h, mesh), mesh))), f});
   }
   for(const auto& pf : mesh_points) {
     const double d = std::sqrt(CGAL::to_double(soup_tree.squared_distance(pf.first)));

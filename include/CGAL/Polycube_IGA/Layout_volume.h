@@ -244,10 +244,10 @@ void untangle_and_evaluate(const TriangleMesh& mesh, Layout_volume_result& r, co
     // uncertified: from the start it gives other optima, at head.off's eye holes worse ones
     // (4 patches uncertified, where the caps fixed leave none).
     std::vector<Patch_side> caps;
-    if(o.slide_caps && !r.untangling.skipped)
+    if(o.slide_caps && !r.untangling.skipped && !r.untangling.uncertified_patches.empty())
       for(const Patch_side& b : r.volume.boundaries())
         if(std::find(r.surface_sides.begin(), r.surface_sides.end(), b) == r.surface_sides.end()) caps.push_back(b);
-    if(!caps.empty() && !r.untangling.uncertified_patches.empty()) {
+    if(!caps.empty()) {
       const Volume_untangling_result second = untangle_volume(r.volume, o.untangling, nullptr, caps);
       if(!second.skipped && !second.reverted) r.untangling.add_pass(second);
     }

@@ -501,12 +501,9 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
     if(!(len > 0.) || fixed[root]) continue;
     const Vector3d m = side_normal[k] / len;
     Vector3d& sum = class_normal[root];
-    const double cos30 = std::sqrt(3.) / 2.;
-    if(!sum.isZero() && m.dot(sum.normalized()) < cos30) {
-      if(m.dot(sum.normalized()) > -cos30) fixed[root] = true;
-      else sum -= m;
-    }
-    else sum += m;
+    const double agree = sum.isZero() ? 1. : m.dot(sum.normalized());
+    if(std::abs(agree) < std::sqrt(3.) / 2.) fixed[root] = true; // over 30 degrees apart
+    else sum += agree > 0. ? m : Vector3d(-m);
   }
 
   // Unknowns: one per free class, numbered in first-member order (deterministic).
@@ -704,13 +701,16 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
     return u;
   };
 
+  auto uncertified_before = [&] {
+    for(std::size_t c : r.patches)
+      if(!certified_before[c]) r.uncertified_patches.push_back(c);
+  };
   const Smallest before_rounds = measure(x, &r.pinned_patches);
   r.min_relative_determinant_before = before_rounds.all;
   if(o.stop_when_pinned && !r.pinned_patches.empty()) {
     r.min_relative_determinant_after = before_rounds.all;
     r.reverted = true;
-    for(std::size_t c : r.patches)
-      if(!certified_before[c]) r.uncertified_patches.push_back(c);
+    uncertified_before();
     return r;
   }
   min_det = before_rounds.movable;
@@ -749,8 +749,7 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
     for(std::size_t k = 0; k < start.size(); ++k) x.segment<3>(Eigen::Index(3 * k)) = start[k];
     r.min_relative_determinant_after = r.min_relative_determinant_before;
     r.reverted = true;
-    for(std::size_t c : r.patches)
-      if(!certified_before[c]) r.uncertified_patches.push_back(c);
+    uncertified_before();
   } else
     r.uncertified_patches = uncertified;
   r.positive_at_samples = r.min_relative_determinant_after > 0.;
