@@ -314,6 +314,23 @@ TEST_CASE("untangling slides the points of a sliding side in its plane and repai
   for(int s = 1; s <= 5; ++s) CHECK(boundary_points_equal(mv.patch(0), v, s));
 }
 
+TEST_CASE("a point of a sliding side where its control net is degenerate stays fixed", "[untangling]")
+{
+  // Side w1's points (1, 2, 4) and (3, 2, 4) made to coincide: the net's difference along u
+  // at (2, 2, 4) is zero, so that point has no normal to slide in, and would move freely.
+  PI::Tensor_bspline_volume v = box_folded_on_w1();
+  v.control_point({{3, 2, 4}}) = v.control_point({{1, 2, 4}});
+  PI::Multipatch_volume mv = closed(v);
+  const PI::Volume_untangling_result r = PI::untangle_volume(mv, PI::Volume_untangling_options(), nullptr, {{0, 6}});
+  CHECK_FALSE(r.skipped);
+  CHECK(r.free_points == 27 + 8);
+  CHECK(r.sliding_points == 8);
+  CHECK(mv.patch(0).control_point({{2, 2, 4}}) == v.control_point({{2, 2, 4}}));
+  bool in_plane = true;
+  PI::internal::for_each_side_point(mv.patch(0), 6, [&](const std::array<int, 3>& i) { in_plane = in_plane && mv.patch(0).control_point(i).z() == 1.; });
+  CHECK(in_plane);
+}
+
 TEST_CASE("untangling spends no rounds on a fold that only fixed points determine", "[untangling]")
 {
   // Edge point (1, 0, 0) pushed past its neighbour along x: det J < 0 on the edge where sides
