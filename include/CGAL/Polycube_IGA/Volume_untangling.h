@@ -391,8 +391,8 @@ inline Eigen::Vector3d side_point_normal(const Tensor_bspline_volume& v, int s, 
  * default options (from evaluate_quality()), which is then not computed again.
  * `sliding_sides`, boundary sides of `mv` (caps: layout_volume()'s `slide_caps`), are not
  * fixed: their control points move in the plane through each normal to the side, except
- * those also on a fixed side or on an edge between two of them at more than 30 degrees.
- * Deterministic.
+ * those also on a fixed side, on an edge between two of them at more than 30 degrees, or
+ * where the control net is degenerate (no normal). Deterministic.
  */
 inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
                                                 const Volume_untangling_options& o = Volume_untangling_options(),
