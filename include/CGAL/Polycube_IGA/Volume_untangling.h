@@ -481,18 +481,17 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
   // sides fix theirs. A class whose members' normals disagree by more than 30 degrees (an
   // edge where two sliding sides meet at an angle) is fixed too.
   std::vector<Vector3d> side_normal(offset[np], Vector3d::Zero());
-  std::vector<bool> on_sliding_side(offset[np], false);
   for(const Patch_side& s : mv.boundaries()) {
     const bool slides = std::find(sliding_sides.begin(), sliding_sides.end(), s) != sliding_sides.end();
     internal::for_each_side_point(mv.patch(s.patch), s.side, [&](const std::array<int, 3>& i) {
       const std::size_t k = linear(s.patch, i);
-      // Fixed if on a fixed side, on two sliding sides (an edge between them), or where the
-      // net is degenerate: with no normal it would move freely, off its side.
-      if(!slides || on_sliding_side[k]) fixed[k] = true;
+      // Fixed if on a fixed side, on two sliding sides (an edge between them: its normal set,
+      // or the point already fixed), or where the net is degenerate: with no normal it would
+      // move freely, off its side. A fixed point's normal is never read.
+      if(!slides || fixed[k] || !side_normal[k].isZero()) fixed[k] = true;
       else {
-        on_sliding_side[k] = true;
         side_normal[k] = internal::side_point_normal(mv.patch(s.patch), s.side, i);
-        if(side_normal[k].isZero()) fixed[k] = true;
+        fixed[k] = side_normal[k].isZero();
       }
     });
   }
