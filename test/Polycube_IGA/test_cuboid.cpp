@@ -9,6 +9,7 @@
 #include "test_support.h"
 
 #include <CGAL/Polycube_IGA/Cuboid_decomposition.h>
+#include <CGAL/Polycube_IGA/Pants_decomposition.h>
 #include <CGAL/Polycube_IGA/internal/feature_curves.h>
 #include <CGAL/Polycube_IGA/internal/loop_corners.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -226,6 +227,71 @@ TEST_CASE("section corners split an ellipse's turning in quarters, a circle's in
   // No corners for a section over 100 times longer than wide, nor for too few points.
   CHECK(!PI::internal::quarter_turn_corners(ellipse(5, 0.01, 96)));
   CHECK(!PI::internal::quarter_turn_corners(ellipse(5, 1, 6)));
+}
+
+TEST_CASE("a loop around a tube of rectangular section has its four sharp corners, a smooth one none", "[cuboid]")
+{
+  // Corners, then points along the sides: a 2 by 1 rectangle at y = 0.5, m points per side.
+  auto rectangle = [](int m) {
+    const std::array<Eigen::Vector3d, 4> c{{{0, 0.5, 0}, {2, 0.5, 0}, {2, 0.5, 1}, {0, 0.5, 1}}};
+    std::vector<Eigen::Vector3d> p;
+    for(std::size_t k = 0; k < 4; ++k)
+      for(int i = 0; i < m; ++i) p.push_back(c[k] + (c[(k + 1) % 4] - c[k]) * double(i) / m);
+    return p;
+  };
+  for(int m : {2, 5}) {
+    INFO("points per side " << m);
+    const auto c = PI::internal::sharp_corners(rectangle(m));
+    REQUIRE(c);
+    CHECK(*c == std::array<std::size_t, 4>{{0, std::size_t(m), std::size_t(2 * m), std::size_t(3 * m)}});
+  }
+  // Seen along the tube (y) the same loop, run the other way, still has them.
+  auto reversed = rectangle(2);
+  std::reverse(reversed.begin(), reversed.end());
+  CHECK(PI::internal::sharp_corners(reversed, Eigen::Vector3d(0, 1, 0)));
+  // A circle turns 360 / n at each point; one notch makes a loop turn back; a triangle
+  // has three corners; a rectangle with one point per side, corners next to each other.
+  std::vector<Eigen::Vector3d> circle;
+  for(int i = 0; i < 12; ++i) circle.emplace_back(std::cos(M_PI * i / 6), 0, std::sin(M_PI * i / 6));
+  CHECK(!PI::internal::sharp_corners(circle));
+  auto notched = rectangle(4);
+  notched[2] += Eigen::Vector3d(0, 0, 0.3);
+  CHECK(!PI::internal::sharp_corners(notched));
+  const std::vector<Eigen::Vector3d> triangle{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}, {2.5, 0, 1}, {2, 0, 2}, {1.5, 0, 3}, {1, 0, 2}, {0.5, 0, 1}};
+  CHECK(!PI::internal::sharp_corners(triangle));
+  CHECK(!PI::internal::sharp_corners(rectangle(1)));
+}
+
+TEST_CASE("a CAD part's handle loops get their corners on its sharp edges", "[cuboid][features]")
+{
+  // anchor.off's handles have rectangular sections; each handle loop has 8 points, its
+  // corners on the sharp edges. At 1/8, ..., 7/8 of the loop every layout node on a handle
+  // loop fell in the middle of a flat side (113 patches not certified instead of 124).
+  const Mesh m = load(data("anchor.off"));
+  const auto pants = PI::Pants_decomposition<Mesh>()(m);
+  const Layout L = decompose(m);
+  check_layout(m, L);
+  int loops = 0;
+  for(const auto& cycle : pants.cycles) {
+    if(cycle.kind != PI::Pants_cycle<Mesh>::HANDLE_LOOP) continue;
+    ++loops;
+    const std::size_t n = cycle.points.size();
+    auto at = [&](std::size_t i) { const auto& q = cycle.points[i % n]; return Eigen::Vector3d(q[0], q[1], q[2]); };
+    int on_loop = 0, sharp = 0;
+    for(auto node : L.nodes) {
+      const auto& q = L.mesh.point(node);
+      const Eigen::Vector3d x(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z()));
+      for(std::size_t i = 0; i < n; ++i) {
+        if((at(i) - x).norm() > 1e-12) continue;
+        ++on_loop;
+        const Eigen::Vector3d a = at(i) - at(i + n - 1), b = at(i + 1) - at(i);
+        sharp += a.dot(b) < 0.5 * a.norm() * b.norm(); // turns by over 60 degrees
+      }
+    }
+    CHECK(on_loop == 4);
+    CHECK(sharp == 4);
+  }
+  CHECK(loops == 4);
 }
 
 TEST_CASE("a tube's stepped end is seen along the tube, not across it", "[cuboid]")

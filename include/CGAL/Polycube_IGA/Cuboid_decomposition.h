@@ -934,6 +934,24 @@ private:
     return shortest_vertex_path<Point>(g, roots, int(target), blocked);
   }
 
+  /// The axis of the tube around the border loop `loop` of `m` (internal::tube_axis() of
+  /// the faces at its vertices); zero if there is no clear one.
+  static Eigen::Vector3d axis_at_loop(const Mesh& m, const internal::Mesh_graph<Mesh>& g, const std::vector<V>& loop)
+  {
+    std::vector<Eigen::Vector3d> normals;
+    for(V v : loop)
+      for(auto f : CGAL::faces_around_target(halfedge(v, m), m)) {
+        if(f == Mesh::null_face()) continue;
+        const auto h = halfedge(f, m);
+        const Eigen::Vector3d& a = g.position[std::size_t(source(h, m))];
+        const Eigen::Vector3d& b = g.position[std::size_t(target(h, m))];
+        const Eigen::Vector3d& c = g.position[std::size_t(target(next(h, m), m))];
+        normals.push_back((b - a).cross(c - a));
+      }
+    const auto a = internal::tube_axis(normals);
+    return a ? *a : Eigen::Vector3d::Zero();
+  }
+
   static Layout cylinder(Mesh m, bool off_steps)
   {
     using namespace internal;
@@ -945,21 +963,10 @@ private:
     // quarters make a squarer one; then the seam joins the nearest two of those. Each loop is
     // seen along the tube's axis there (internal::tube_axis()), not across a stepped end.
     std::array<std::vector<Eigen::Vector3d>, 2> p;
-    std::array<Eigen::Vector3d, 2> axis{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+    std::array<Eigen::Vector3d, 2> axis;
     for(std::size_t i = 0; i < 2; ++i) {
-      std::vector<Eigen::Vector3d> normals;
-      for(V v : loops[i]) {
-        p[i].push_back(g.position[std::size_t(v)]);
-        for(auto f : CGAL::faces_around_target(halfedge(v, m), m)) {
-          if(f == Mesh::null_face()) continue;
-          const auto h = halfedge(f, m);
-          const Eigen::Vector3d& a = g.position[std::size_t(source(h, m))];
-          const Eigen::Vector3d& b = g.position[std::size_t(target(h, m))];
-          const Eigen::Vector3d& c = g.position[std::size_t(target(next(h, m), m))];
-          normals.push_back((b - a).cross(c - a));
-        }
-      }
-      if(const auto a = tube_axis(normals)) axis[i] = *a;
+      for(V v : loops[i]) p[i].push_back(g.position[std::size_t(v)]);
+      axis[i] = axis_at_loop(m, g, loops[i]);
     }
     std::vector<int> path = seam_between(g, loops, loops[0], loops[1]);
     std::optional<std::array<std::array<std::size_t, 4>, 2>> corner;
@@ -1242,7 +1249,42 @@ private:
       const auto& L = loops[std::size_t(i)];
       const int j = (i + 1) % 3, k = (i + 2) % 3;
       std::vector<std::size_t>& placed = corners[std::size_t(loop_cycle[std::size_t(i)])];
+      // Seeds in two opposite gaps between the corners, at the gaps' middles: the pair and
+      // assignment that bring the seeds nearest to the loops they join.
+      auto seeds_between_corners = [&]() {
+        std::array<std::size_t, 4> mid{};
+        for(int c = 0; c < 4; ++c) {
+          const std::size_t a = corner[std::size_t(i)][std::size_t(c)], b = corner[std::size_t(i)][std::size_t((c + 1) % 4)];
+          double gap = s[std::size_t(i)][b] - s[std::size_t(i)][a];
+          if(gap <= 0) gap += s[std::size_t(i)].back();
+          mid[std::size_t(c)] = at_arc_length(s[std::size_t(i)], a, 0.5 * gap);
+        }
+        double best = std::numeric_limits<double>::infinity();
+        for(int pair = 0; pair < 2; ++pair)
+          for(int swap = 0; swap < 2; ++swap) {
+            const std::size_t sj = mid[std::size_t(pair + 2 * swap)], sk = mid[std::size_t(pair + 2 * (1 - swap))];
+            const double cost = dist[std::size_t(j)][L[sj]] + dist[std::size_t(k)][L[sk]];
+            if(cost < best) {
+              best = cost;
+              seed[std::size_t(i)][std::size_t(j)] = sj;
+              seed[std::size_t(i)][std::size_t(k)] = sk;
+            }
+          }
+      };
+      std::optional<std::array<std::size_t, 4>> sharp;
       if(placed.empty()) {
+        std::vector<Eigen::Vector3d> p;
+        for(V v : L) p.push_back(g.position[std::size_t(v)]);
+        sharp = sharp_corners(p, axis_at_loop(P, g, L));
+      }
+      if(sharp) {
+        // Free, on a tube of rectangular section (CAD): the corners on its four sharp edges.
+        // At 1/8, ..., 7/8 of the loop they fell in the middle of its flat sides (anchor.off:
+        // every corner of its handle loops), every patch then folded over a sharp edge.
+        corner[std::size_t(i)] = *sharp;
+        for(int c = 0; c < 4; ++c) placed.push_back(par[L[corner[std::size_t(i)][std::size_t(c)]]]);
+        seeds_between_corners();
+      } else if(placed.empty()) {
         // Free: the seed toward the nearer neighbour is its closest point, the other seed
         // opposite by arc length, corners at 1/8, 3/8, 5/8, 7/8 (§2.2.2.2 c).
         std::size_t bj = 0, bk = 0;
@@ -1273,30 +1315,12 @@ private:
         // Record in the cycle's own order (the cycle is a loop of m vertices).
         for(int c = 0; c < 4; ++c) placed.push_back(par[L[corner[std::size_t(i)][std::size_t(c)]]]);
       } else {
-        // Imposed by a neighbour: seeds in two opposite gaps between the corners, the pair
-        // and assignment that bring the seeds nearest to the loops they join.
+        // Imposed by a neighbour: the seeds between its corners.
         int found = 0;
         for(std::size_t x = 0; x < L.size(); ++x)
           if(std::find(placed.begin(), placed.end(), par[L[x]]) != placed.end()) corner[std::size_t(i)][std::size_t(found++ % 4)] = x;
         if(found != 4) layout_failure("imposed corners are not on the pants' boundary");
-        std::array<std::size_t, 4> mid{};
-        for(int c = 0; c < 4; ++c) {
-          const std::size_t a = corner[std::size_t(i)][std::size_t(c)], b = corner[std::size_t(i)][std::size_t((c + 1) % 4)];
-          double gap = s[std::size_t(i)][b] - s[std::size_t(i)][a];
-          if(gap <= 0) gap += s[std::size_t(i)].back();
-          mid[std::size_t(c)] = at_arc_length(s[std::size_t(i)], a, 0.5 * gap);
-        }
-        double best = std::numeric_limits<double>::infinity();
-        for(int pair = 0; pair < 2; ++pair)
-          for(int swap = 0; swap < 2; ++swap) {
-            const std::size_t sj = mid[std::size_t(pair + 2 * swap)], sk = mid[std::size_t(pair + 2 * (1 - swap))];
-            const double cost = dist[std::size_t(j)][L[sj]] + dist[std::size_t(k)][L[sk]];
-            if(cost < best) {
-              best = cost;
-              seed[std::size_t(i)][std::size_t(j)] = sj;
-              seed[std::size_t(i)][std::size_t(k)] = sk;
-            }
-          }
+        seeds_between_corners();
       }
       for(int c = 0; c < 4; ++c)
         for(int t : {j, k})

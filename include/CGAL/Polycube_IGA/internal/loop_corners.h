@@ -155,6 +155,38 @@ inline std::optional<std::array<std::size_t, 4>> quarter_turn_corners(const std:
   return best;
 }
 
+/// Indices, increasing, of the four sharp corners of the closed polyline `p`: its only
+/// vertices where it turns, seen along `axis` (as in_mean_plane()), by more than
+/// `min_turn_degrees`, all four the way the loop turns, no two of them neighbours, and the
+/// loop turning once around. A loop around a tube of rectangular section from CAD
+/// (anchor.off's handle loops: 8 vertices, 4 of them on the tube's sharp edges). Empty
+/// otherwise: a smooth loop turns a little at every vertex, and an edge path that zigzags
+/// turns both ways.
+inline std::optional<std::array<std::size_t, 4>> sharp_corners(const std::vector<Eigen::Vector3d>& p,
+                                                                const Eigen::Vector3d& axis = Eigen::Vector3d::Zero(),
+                                                                double min_turn_degrees = 60.)
+{
+  const std::size_t n = p.size();
+  if(n < 8) return std::nullopt;
+  const auto projected = in_mean_plane(p, axis);
+  if(!projected) return std::nullopt;
+  const std::vector<Eigen::Vector2d>& q = *projected;
+  std::vector<std::size_t> sharp;
+  double total = 0.;
+  for(std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d a = q[i] - q[(i + n - 1) % n], b = q[(i + 1) % n] - q[i];
+    const double turn = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b)) * 180. / 3.14159265358979323846;
+    total += turn;
+    if(std::abs(turn) <= min_turn_degrees) continue;
+    if(turn < 0.) return std::nullopt;
+    sharp.push_back(i);
+  }
+  if(sharp.size() != 4 || std::abs(total - 360.) > 30.) return std::nullopt;
+  for(std::size_t k = 0; k < 4; ++k)
+    if((sharp[(k + 1) % 4] + n - sharp[k]) % n < 2) return std::nullopt;
+  return std::array<std::size_t, 4>{sharp[0], sharp[1], sharp[2], sharp[3]};
+}
+
 } // namespace internal
 } // namespace Polycube_IGA
 } // namespace CGAL
