@@ -12,6 +12,7 @@
 #include <CGAL/Polycube_IGA/Pants_decomposition.h>
 #include <CGAL/Polycube_IGA/internal/feature_curves.h>
 #include <CGAL/Polycube_IGA/internal/loop_corners.h>
+#include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/centroid.h>
@@ -398,6 +399,48 @@ TEST_CASE("cuboid decomposition of genus 2, 3 and 4 gives 4 cuboids per pants", 
     CHECK(L.cuboids.size() == std::size_t(4 * (2 * g - 2)));
     check_layout(m, L);
   }
+}
+
+TEST_CASE("a pants layout gives a protrusion cubes of its own: femur.off's shaft", "[cuboid]")
+{
+  // femur.off is genus 2 by two small handles at the knee; its pants cycles all lie there and
+  // the whole shaft was one surface patch, reaching 0.89 times its border's length from it
+  // (the volume missed it: 53% of the diagonal). Every patch that reaches over 1% of the
+  // diagonal from its border is now within a quarter of its border's length of it
+  // (straight-line distance, never more than along the mesh).
+  const Mesh m = load(data("femur.off"));
+  const Layout L = decompose(m);
+  check_layout(m, L);
+  CHECK(L.number_of_pants == 2);
+  CHECK(L.cuboids.size() > 8);
+  auto point = [&](Mesh::Vertex_index v) {
+    const auto& q = L.mesh.point(v);
+    return Eigen::Vector3d(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z()));
+  };
+  const auto box = CGAL::Polygon_mesh_processing::bbox(m);
+  const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) + CGAL::square(box.zmax() - box.zmin()));
+  double worst = 0.;
+  for(const auto& p : L.patches) {
+    if(p.kind != Layout::SURFACE) continue;
+    std::vector<Eigen::Vector3d> border;
+    double around = 0.;
+    for(std::size_t a : p.arcs) {
+      const auto& vs = L.arcs[a].vertices;
+      for(std::size_t i = 0; i < vs.size(); ++i) {
+        border.push_back(point(vs[i]));
+        if(i > 0) around += (point(vs[i]) - point(vs[i - 1])).norm();
+      }
+    }
+    double deepest = 0.;
+    for(auto f : p.faces)
+      for(auto v : vertices_around_face(halfedge(f, L.mesh), L.mesh)) {
+        double d = std::numeric_limits<double>::infinity();
+        for(const auto& b : border) d = std::min(d, (point(v) - b).norm());
+        deepest = std::max(deepest, d);
+      }
+    if(deepest > 0.01 * diagonal) worst = std::max(worst, deepest / around);
+  }
+  CHECK(worst <= 0.25);
 }
 
 TEST_CASE("cuboid decomposition is deterministic", "[cuboid]")

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <optional>
 #include <vector>
 
 namespace CGAL {
@@ -44,6 +45,9 @@ struct Piece_graph
   /// of a piece into a small middle: fixed positions put most of a mushroom in one patch.
   double interior_area_fraction = 0.;
   Eigen::Vector2d interior_center = Eigen::Vector2d(0.5, 0.5);
+  /// If set: a piece vertex whose place in the polygon becomes `interior_center`, the interior
+  /// vertices moved with it (a protrusion's far end, which the map squeezes anywhere).
+  std::optional<std::size_t> interior_center_vertex;
 };
 
 /// The scale about g.interior_center at which the convex polygon of g's interior vertices
@@ -140,6 +144,12 @@ Piece_graph_embedding<P> embed_piece_graph(CGAL::Surface_mesh<P>& piece,
   const std::size_t nb = g.border_nodes.size(), ni = g.interior_uv.size(), n = nb + ni;
   std::vector<Eigen::Vector2d> uv(n);
   for(std::size_t i = 0; i < nb; ++i) uv[i] = loop_uv[g.border_nodes[i]];
+  if(g.interior_center_vertex) {
+    const auto uvmap = piece.template property_map<typename CGAL::Surface_mesh<P>::Vertex_index, Eigen::Vector2d>("v:uv").first;
+    const Eigen::Vector2d to = uvmap[typename CGAL::Surface_mesh<P>::Vertex_index(std::uint32_t(*g.interior_center_vertex))];
+    for(auto& p : g.interior_uv) p += to - g.interior_center;
+    g.interior_center = to;
+  }
   if(g.interior_area_fraction > 0.) {
     const double scale = area_balancing_scale(piece, g);
     for(auto& p : g.interior_uv) p = g.interior_center + scale * (p - g.interior_center);
