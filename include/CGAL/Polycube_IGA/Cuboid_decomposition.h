@@ -513,16 +513,18 @@ private:
   /// patch's corners on top, the bottom a square around the vertex farthest from the border,
   /// as large as a cube's face on it (at most a fifth of the patch). The operator() runs
   /// this again, up to 8 rounds, while a bottom is still a protrusion (the rest of a long
-  /// shaft). The layout
-  /// is returned unchanged if the cube does not fit.
+  /// shaft). The layout is returned unchanged if any of its cubes does not fit.
   static Layout with_protrusions_extruded(Layout L)
   {
     using namespace internal;
+    // Without the parent map of the first gluing: glue_pieces() would take the layout's mesh
+    // for a piece of a larger one. Vertex and face indices stay, so the arcs remain valid.
     Mesh m = L.mesh;
     if(auto fp = m.template property_map<typename Mesh::Face_index, std::size_t>("f:parent"); fp.second) m.remove_property_map(fp.first);
     std::vector<bool> cut(num_edges(m), false);
     for(const auto& a : L.arcs)
       for(std::size_t i = 0; i + 1 < a.vertices.size(); ++i) cut[edge(halfedge(a.vertices[i], a.vertices[i + 1], m).first, m)] = true;
+    // Surface patches come first, numbered by their smallest face as the pieces are.
     std::vector<Mesh> pieces = cut_into_pieces(m, cut);
     std::size_t surface = 0;
     while(surface < L.patches.size() && L.patches[surface].kind == Layout::SURFACE) ++surface;
