@@ -419,6 +419,9 @@ public:
               .cut_criterion(option(np, internal_np::cut_criterion, Cut_criterion::LENGTH))
               .symmetry_plane(option(np, internal_np::symmetry_plane, Cut_criterion_options().symmetry_plane))
               .criterion_strength(option(np, internal_np::criterion_strength, 1.0)));
+    // Refinement keeps the shape, so the bounding box is the input's.
+    const CGAL::Bbox_3 box = CGAL::Polygon_mesh_processing::bbox(tm);
+    const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) + CGAL::square(box.zmax() - box.zmin()));
     std::shared_ptr<TriangleMesh> refined;
     for(int attempt = 0;; ++attempt) {
       const TriangleMesh& mesh = refined ? *refined : tm;
@@ -427,7 +430,7 @@ public:
         // A cube's bottom can be a protrusion again (a long one): a few rounds.
         for(int round = 0; pd && round < 8; ++round) {
           const std::size_t cuboids = L.cuboids.size();
-          L = with_protrusions_extruded(std::move(L));
+          L = with_protrusions_extruded(std::move(L), diagonal);
           if(L.cuboids.size() == cuboids) break;
         }
         carry_input_indices(tm, L);
@@ -504,7 +507,7 @@ private:
   /// The layout with every protrusion given a cube of its own. A protrusion is a surface
   /// patch whose faces reach farther from its border (along the mesh's edges) than a quarter
   /// of the border's length, deeper than a hemisphere on that border, and than 1% of the
-  /// bounding box's diagonal (on the test meshes whose volumes are valid, every patch stays
+  /// bounding box's `diagonal` (on the test meshes whose volumes are valid, every patch stays
   /// within 0.15 of its border's length; femur.off 0.89, elephant.off 0.34). A pants patch whose
   /// cycles all lie at one end of the shape (femur.off: two small handles at the knee, the
   /// whole shaft in one patch) leaves the rest of it in one face, which a map to the square
@@ -514,7 +517,7 @@ private:
   /// as large as a cube's face on it (at most a fifth of the patch). The operator() runs
   /// this again, up to 8 rounds, while a bottom is still a protrusion (the rest of a long
   /// shaft). The layout is returned unchanged if any of its cubes does not fit.
-  static Layout with_protrusions_extruded(Layout L)
+  static Layout with_protrusions_extruded(Layout L, double diagonal)
   {
     using namespace internal;
     // Without the parent map of the first gluing: glue_pieces() would take the layout's mesh
@@ -529,25 +532,31 @@ private:
     std::size_t surface = 0;
     while(surface < L.patches.size() && L.patches[surface].kind == Layout::SURFACE) ++surface;
     if(pieces.size() != surface) return L;
-    // Deeper than 1% of the diagonal: half of what the volume may miss by default.
-    const auto box = CGAL::Polygon_mesh_processing::bbox(m);
-    const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) + CGAL::square(box.zmax() - box.zmin()));
-    std::vector<std::size_t> chosen, far_end;
+    struct Cube
+    {
+      std::size_t piece;
+      std::vector<V> loop;
+      double around;                     // the loop's length
+      std::size_t far_end;               // the piece's vertex farthest from the loop
+      std::array<std::size_t, 4> corner; // loop indices, increasing
+      std::array<std::size_t, 4> top;    // their vertices of m
+      Embedding e;
+    };
+    std::vector<Cube> cubes;
     for(std::size_t k = 0; k < surface; ++k) {
       if(num_faces(pieces[k]) != L.patches[k].faces.size()) return L;
-      const std::vector<V> loop = border_loop(pieces[k]);
+      std::vector<V> loop = border_loop(pieces[k]);
       const Mesh_graph<Mesh> g(pieces[k], get(CGAL::vertex_point, pieces[k]));
       std::vector<int> roots;
       for(V v : loop) roots.push_back(int(v));
       const std::vector<double> d = distances_from<Point>(g, roots);
       const auto far = std::max_element(d.begin(), d.end());
-      const double deepest = *far, around = loop_arc_length(pieces[k], loop).back();
-      if(deepest > 0.25 * around && deepest > 0.01 * diagonal) {
-        chosen.push_back(k);
-        far_end.push_back(std::size_t(far - d.begin()));
-      }
+      const double around = loop_arc_length(pieces[k], loop).back();
+      // Deeper than 1% of the diagonal: half of what the volume may miss by default.
+      if(*far > 0.25 * around && *far > 0.01 * diagonal)
+        cubes.push_back({k, std::move(loop), around, std::size_t(far - d.begin()), {}, {}, {}});
     }
-    if(chosen.empty()) return L;
+    if(cubes.empty()) return L;
     Layout_builder bld;
     for(V n : L.nodes) bld.node(std::size_t(n));
     for(const auto& a : L.arcs) bld.arc(as_indices(a.vertices));
@@ -557,39 +566,29 @@ private:
       bld.cuboids.push_back(c.nodes);
       bld.cuboid_pants.push_back(c.pants);
     }
-    struct Cube
-    {
-      std::size_t piece;
-      std::vector<V> loop;
-      std::array<std::size_t, 4> corner; // loop indices, increasing
-      Embedding e;
-    };
-    std::vector<Cube> cubes;
     try {
-      for(std::size_t x = 0; x < chosen.size(); ++x) {
-        const std::size_t k = chosen[x];
-        Cube c{k, border_loop(pieces[k]), {}, {}};
-        const std::vector<std::size_t> par = vertex_parents(pieces[k]);
-        std::vector<std::size_t> at;
+      for(Cube& c : cubes) {
+        const std::vector<std::size_t> par = vertex_parents(pieces[c.piece]);
+        std::size_t found = 0;
         for(std::size_t i = 0; i < c.loop.size(); ++i)
-          for(std::size_t n : L.patches[k].corners)
-            if(par[c.loop[i]] == std::size_t(L.nodes[n])) at.push_back(i);
-        if(at.size() != 4) return L;
-        std::copy(at.begin(), at.end(), c.corner.begin());
+          for(std::size_t n : L.patches[c.piece].corners)
+            if(par[c.loop[i]] == std::size_t(L.nodes[n])) {
+              if(found == 4) return L;
+              c.corner[found] = i;
+              c.top[found++] = par[c.loop[i]];
+            }
+        if(found != 4) return L;
         // The bottom as large as a cube's face on this border: the far end of the protrusion.
-        const double around = loop_arc_length(pieces[k], c.loop).back();
-        const double area = CGAL::to_double(CGAL::Polygon_mesh_processing::area(pieces[k]));
-        Piece_graph pg = disk_graph(c.corner, std::clamp(around * around / 16. / area, 1e-4, 0.2));
-        pg.interior_center_vertex = far_end[x];
-        c.e = embed_piece_graph(pieces[k], c.loop, pg);
-        cubes.push_back(std::move(c));
+        const double area = CGAL::to_double(CGAL::Polygon_mesh_processing::area(pieces[c.piece]));
+        Piece_graph pg = disk_graph(c.corner, std::clamp(c.around * c.around / 16. / area, 1e-4, 0.2));
+        pg.interior_center_vertex = c.far_end;
+        c.e = embed_piece_graph(pieces[c.piece], c.loop, pg);
       }
       Glued_mesh<Point> gl = glue_pieces(m, pieces);
       for(const Cube& c : cubes) {
-        const std::vector<std::size_t> par = vertex_parents(pieces[c.piece]);
         std::array<std::size_t, 4> top{}, bottom{};
         for(std::size_t i = 0; i < 4; ++i) {
-          top[i] = bld.node(par[c.loop[c.corner[i]]]);
+          top[i] = bld.node(c.top[i]);
           bottom[i] = bld.node(final_vertex(gl, c.piece, c.e.vertex[4 + i]));
         }
         for(const auto& path : c.e.path) bld.arc(final_path(gl, c.piece, path));

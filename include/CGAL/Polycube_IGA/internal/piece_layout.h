@@ -22,8 +22,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <string>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace CGAL {
