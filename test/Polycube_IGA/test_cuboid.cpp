@@ -332,6 +332,69 @@ TEST_CASE("a tube's stepped end is seen along the tube, not across it", "[cuboid
   CHECK(!PI::internal::tube_axis(std::vector<Eigen::Vector3d>(8, Eigen::Vector3d(0, 0, 1))));
 }
 
+TEST_CASE("a section's arc length ignores edges along the tube, and a corner beside a knife edge goes onto it", "[cuboid]")
+{
+  // A lens 10 by 0.6 seen along y: two arcs of a circle meeting at sharp tips x = +-5, the
+  // upper one 2 further along the tube, with a step along y at each tip.
+  const int n = 40;
+  std::vector<Eigen::Vector3d> p;
+  const double r = (25. + 0.09) / 0.6, c = r - 0.3; // circle through (+-5, 0) and (0, 0.3)
+  for(int i = 0; i <= n; ++i) { // upper arc, from x = 5 to x = -5, at y = 2
+    const double x = 5. - 10. * i / n;
+    p.emplace_back(x, 2., std::max(0., std::sqrt(r * r - x * x) - c));
+  }
+  for(int i = 0; i <= n; ++i) { // the step down at x = -5, the lower arc back to x = 5 at y = 0
+    const double x = -5. + 10. * i / n;
+    p.emplace_back(x, 0., std::min(0., c - std::sqrt(r * r - x * x)));
+  }
+  const auto q = PI::internal::in_mean_plane(p, Eigen::Vector3d(0, 1, 0));
+  REQUIRE(q);
+  const std::vector<double> s = PI::internal::section_arc_length(*q);
+  REQUIRE(s.size() == p.size() + 1);
+  // The steps count for nothing: the lens's perimeter, a little over twice its width.
+  CHECK(s.back() == Approx(20.048).epsilon(0.0005));
+  CHECK(s[n + 1] - s[n] == Approx(0).margin(1e-12));
+  // The tips turn by about 166 degrees, the step's two points seen as one: a corner 0.5
+  // beside one goes onto it (the first of the two), within 1/32 of the section.
+  const std::size_t beside = n + 3;
+  REQUIRE(s[beside] - s[n] < s.back() / 32.);
+  CHECK(PI::internal::sharpest_turn_near(*q, s, beside, s.back() / 32.) == n);
+  CHECK(PI::internal::sharpest_turn_near(*q, s, n - 2, s.back() / 32.) == n);
+  CHECK(PI::internal::sharpest_turn_near(*q, s, 2, s.back() / 32.) == 0);
+  // Not in the middle of a side, and not on a smooth ellipse, which turns a little everywhere.
+  CHECK(PI::internal::sharpest_turn_near(*q, s, n / 2, s.back() / 32.) == n / 2);
+  std::vector<Eigen::Vector3d> ellipse;
+  for(int i = 0; i < 96; ++i) ellipse.emplace_back(5 * std::cos(2 * M_PI * i / 96), 0, std::sin(2 * M_PI * i / 96));
+  const auto e = PI::internal::in_mean_plane(ellipse);
+  REQUIRE(e);
+  const std::vector<double> se = PI::internal::section_arc_length(*e);
+  for(std::size_t i : {0, 1, 47, 48}) CHECK(PI::internal::sharpest_turn_near(*e, se, i, se.back() / 32.) == i);
+}
+
+TEST_CASE("a blade's section corners at both ends lie alike, two of them on its knife edges", "[cuboid]")
+{
+  // blade.off (sections 10 by 0.65 with sharp edges at x = 4.008 and -5.990) has its ends
+  // cut at two heights, 1.9 apart. At equal 3D arc lengths the step edges shifted one end's
+  // corners: 1.3 and 1.1 back from the edges at y = 13, 0.25 and 0.67 at y = 142, and the
+  // patches there wrapped round the edges (slabs 23, 24 and 104 not certified).
+  const Mesh m = load(data("blade.off"));
+  const Layout L = decompose(m);
+  check_layout(m, L);
+  std::array<std::vector<double>, 2> x; // end nodes' x, by end
+  for(auto v : L.nodes) {
+    const auto& q = L.mesh.point(v);
+    const double y = CGAL::to_double(q.y());
+    if(y < 15. || y > 140.) x[y > 140.].push_back(CGAL::to_double(q.x()));
+  }
+  for(auto& e : x) {
+    REQUIRE(e.size() == 4);
+    std::sort(e.begin(), e.end());
+    CHECK(e.front() == Approx(-5.98992).margin(1e-4));
+    CHECK(e.back() == Approx(4.0083).margin(1e-4));
+  }
+  for(std::size_t k = 0; k < 4; ++k) CHECK(x[0][k] == Approx(x[1][k]).margin(0.6));
+}
+
 TEST_CASE("corners_off_steps moves a cylinder's end corners off the steps of its loops and no others", "[cuboid]")
 {
   auto tube = [](int step) {

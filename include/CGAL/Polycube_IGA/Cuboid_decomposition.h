@@ -1089,7 +1089,7 @@ private:
     const auto loops = all_border_loops<Point>(m);
     Mesh_graph<Mesh> g(m, get(CGAL::vertex_point, m));
     // The seam joins the loops' nearest points, and each section's corners are at equal arc
-    // lengths from it, unless that makes a section's quad skewed (a flat blade's section a
+    // lengths from it (of the section seen along the tube, see below), unless that makes a section's quad skewed (a flat blade's section a
     // diamond with two flat corners) and the corners that split the loops' turning in
     // quarters make a squarer one; then the seam joins the nearest two of those. Each loop is
     // seen along the tube's axis there (internal::tube_axis()), not across a stepped end.
@@ -1104,14 +1104,26 @@ private:
     if(path.size() >= 2) {
       std::array<std::optional<std::array<std::size_t, 4>>, 2> turned;
       std::array<std::array<std::size_t, 4>, 2> equal{};
-      bool stepped = false;
+      bool stepped = false, along_tube = false;
       double equal_sine = 1., turned_sine = 1.;
       for(std::size_t i = 0; i < 2; ++i) {
         turned[i] = quarter_turn_corners(p[i], axis[i]);
         const std::vector<double> s = loop_arc_length(m, loops[i]);
         const V end(std::uint32_t(i == 0 ? path.front() : path.back()));
         const std::size_t at = std::size_t(std::find(loops[i].begin(), loops[i].end(), end) - loops[i].begin());
-        for(std::size_t k = 0; k < 4; ++k) equal[i][k] = at_arc_length(s, at, s.back() * double(k) / 4.);
+        // Asked for the first time, the corners are at equal arc lengths of the section, the
+        // loop seen along the tube, and on a knife edge beside them (sharpest_turn_near()): a
+        // stepped end's step edges run along the tube and would shift its corners against
+        // the other end's (blade.off: 1.3 back from a sharp edge at one end, 0.25 at the
+        // other, the arcs between running across the edge). Moved off the steps, they are
+        // at equal arc lengths of the loop, which keeps them off the steps' ends.
+        const auto q = off_steps || axis[i].isZero() ? std::nullopt : in_mean_plane(p[i], axis[i]);
+        const std::vector<double> seen = q ? section_arc_length(*q) : s;
+        for(std::size_t k = 0; k < 4; ++k) {
+          equal[i][k] = at_arc_length(seen, at, seen.back() * double(k) / 4.);
+          if(q && k > 0) equal[i][k] = sharpest_turn_near(*q, seen, equal[i][k], seen.back() / 32.);
+          along_tube = along_tube || equal[i][k] != at_arc_length(s, at, s.back() * double(k) / 4.);
+        }
         equal_sine = std::min(equal_sine, corner_sine(p[i], equal[i], axis[i]));
         if(turned[i]) turned_sine = std::min(turned_sine, corner_sine(p[i], *turned[i], axis[i]));
         // The seam joins the loops' nearest points, on a tube cut at two heights the ends of
@@ -1125,7 +1137,7 @@ private:
       }
       const double skewed = 0.7; // the sine of 44 degrees
       if(turned[0] && turned[1] && equal_sine < skewed && turned_sine > equal_sine) corner = std::array<std::array<std::size_t, 4>, 2>{{*turned[0], *turned[1]}};
-      else if(stepped) corner = equal;
+      else if(stepped || along_tube) corner = equal;
     }
     if(corner) {
       std::array<std::vector<V>, 2> ends;

@@ -39,6 +39,12 @@ inline double smallest_sine(const std::vector<Eigen::Vector2d>& q, const std::ar
   return std::max(smallest, 0.);
 }
 
+/// The turn, in degrees, from direction `a` to direction `b` (counter-clockwise positive).
+inline double turn_degrees(const Eigen::Vector2d& a, const Eigen::Vector2d& b)
+{
+  return std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b)) * 180. / 3.14159265358979323846;
+}
+
 /// Newell's normal of the closed polyline `p`: its area vector, zero if it encloses no area.
 inline Eigen::Vector3d newell_normal(const std::vector<Eigen::Vector3d>& p)
 {
@@ -88,6 +94,48 @@ inline std::optional<std::vector<Eigen::Vector2d>> in_mean_plane(const std::vect
   return q;
 }
 
+/// Cumulative arc length (size n + 1, the last the total) of the closed polyline `q`, a loop
+/// seen along a tube (in_mean_plane()), where edges along the tube count for nothing.
+inline std::vector<double> section_arc_length(const std::vector<Eigen::Vector2d>& q)
+{
+  const std::size_t n = q.size();
+  std::vector<double> s(n + 1, 0.);
+  for(std::size_t i = 0; i < n; ++i) s[i + 1] = s[i] + (q[(i + 1) % n] - q[i]).norm();
+  return s;
+}
+
+/// The vertex of the closed polyline `q` (a loop seen along a tube, in_mean_plane()) within
+/// `window` of arc length (`s`, as section_arc_length()) of vertex `c` where `q` turns the
+/// most towards its inside, if by more than `min_turn_degrees` (the first such if several);
+/// else `c`. A section corner
+/// beside a knife edge goes onto it: blade.off's edges turn by 72 degrees at one vertex, and
+/// a corner 0.25 from one left the patch on one side wrapped round the edge, a sliver corner
+/// and a slab that folds.
+inline std::size_t sharpest_turn_near(const std::vector<Eigen::Vector2d>& q, const std::vector<double>& s, std::size_t c,
+                                      double window, double min_turn_degrees = 60.)
+{
+  const std::size_t n = q.size();
+  std::size_t best = c;
+  double most = min_turn_degrees;
+  // Points that coincide seen along the tube (a step's ends) share the turn there.
+  const double tiny = 1e-9 * s[n];
+  auto apart = [&](std::size_t j, std::size_t step) {
+    std::size_t k = (j + step) % n;
+    for(std::size_t m = 1; m < n && (q[k] - q[j]).norm() <= tiny; ++m) k = (k + step) % n;
+    return k;
+  };
+  for(std::size_t j = 0; j < n; ++j) {
+    const double g = std::abs(s[j] - s[c]);
+    if(std::min(g, s[n] - g) > window) continue;
+    const double t = turn_degrees(q[j] - q[apart(j, n - 1)], q[apart(j, 1)] - q[j]);
+    if(t > most) {
+      most = t;
+      best = j;
+    }
+  }
+  return best;
+}
+
 /// The smallest sine of the angles of the quad on the points `c` (any order along the
 /// loop) of the closed polyline `p`, seen along `axis` (as in_mean_plane()); 0 if it is not
 /// convex.
@@ -122,7 +170,7 @@ inline std::optional<std::array<std::size_t, 4>> quarter_turn_corners(const std:
   std::vector<double> turn(n + 1, 0.);
   for(std::size_t i = 1; i <= n; ++i) {
     const Eigen::Vector2d a = q[i % n] - q[i - 1], b = q[(i + 1) % n] - q[i % n];
-    turn[i] = turn[i - 1] + std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b)) * 180. / 3.14159265358979323846;
+    turn[i] = turn[i - 1] + turn_degrees(a, b);
   }
   if(std::abs(turn[n] - 360.) > 30.) return std::nullopt;
   std::optional<std::array<std::size_t, 4>> best;
@@ -175,7 +223,7 @@ inline std::optional<std::array<std::size_t, 4>> sharp_corners(const std::vector
   double total = 0.;
   for(std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector2d a = q[i] - q[(i + n - 1) % n], b = q[(i + 1) % n] - q[i];
-    const double turn = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b)) * 180. / 3.14159265358979323846;
+    const double turn = turn_degrees(a, b);
     total += turn;
     if(std::abs(turn) <= min_turn_degrees) continue;
     if(turn < 0.) return std::nullopt;
