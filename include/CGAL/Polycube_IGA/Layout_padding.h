@@ -13,7 +13,8 @@
 //
 //   * every node n gets an inner node n' = n - d_n N_n (N_n the outward unit normal averaged
 //     over the surface patches at n, d_n = thickness x the shortest arc at n, but at most a
-//     third of the solid's thickness under n, so thin parts keep a core between two layers,
+//     third of the solid's thickness under n (or at its arc neighbours where a ray from n
+//     leaves through a cut end), so thin parts keep a core between two layers,
 //     and changing by at most 5% of an arc's length along it, so inner arcs stay nearly
 //     parallel to their outer arcs);
 //   * every arc a gets an inner arc a' (the chord of its inner nodes plus half the arc's
@@ -494,8 +495,19 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
   // Where the solid is thinner than the layers on its two faces (a mushroom's rim, a
   // blade), the inner node would pass the opposite face: the layer keeps to a fraction of
   // the thickness under the node.
+  // A ray that leaves without a hit starts on a cut end whose opposite face the cut took
+  // away (blade.off's far end, stepped: under the bottom corner the top ends 1.9 earlier,
+  // and the inner node went 0.53 deep into a blade 0.65 thick, past the top's inner node);
+  // there the solid is as thin as at the nodes it shares an arc with.
   if(o.maximum_thickness_fraction > 0.) {
-    for(std::size_t n = 0; n < nn; ++n) depth[n] = std::min(depth[n], o.maximum_thickness_fraction * probe.thickness(outer[n], node_normal[n]));
+    std::vector<double> under(nn);
+    for(std::size_t n = 0; n < nn; ++n) under[n] = probe.thickness(outer[n], node_normal[n]);
+    std::vector<double> seen = under;
+    for(const auto& arc : layout.arcs)
+      for(int e = 0; e < 2; ++e)
+        if(!(under[arc.nodes[std::size_t(e)]] < infinity))
+          seen[arc.nodes[std::size_t(e)]] = std::min(seen[arc.nodes[std::size_t(e)]], under[arc.nodes[std::size_t(1 - e)]]);
+    for(std::size_t n = 0; n < nn; ++n) depth[n] = std::min(depth[n], o.maximum_thickness_fraction * seen[n]);
   }
   // A node capped by the thickness would tilt the inner arcs and walls around it: the depth
   // may change along an arc by at most maximum_depth_slope times its length (depths only
