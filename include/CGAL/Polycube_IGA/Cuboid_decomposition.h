@@ -1089,8 +1089,9 @@ private:
     const auto loops = all_border_loops<Point>(m);
     Mesh_graph<Mesh> g(m, get(CGAL::vertex_point, m));
     // The seam joins the loops' nearest points, and each section's corners are at equal arc
-    // lengths from it (of the section seen along the tube, see below), unless that makes a section's quad skewed (a flat blade's section a
-    // diamond with two flat corners) and the corners that split the loops' turning in
+    // lengths from it (of the section seen along the tube, see below), unless that makes a
+    // section's quad skewed (a flat blade's section a diamond with two flat corners) and the
+    // corners that split the loops' turning in
     // quarters make a squarer one; then the seam joins the nearest two of those. Each loop is
     // seen along the tube's axis there (internal::tube_axis()), not across a stepped end.
     std::array<std::vector<Eigen::Vector3d>, 2> p;
@@ -1122,6 +1123,8 @@ private:
         for(std::size_t k = 0; k < 4; ++k) {
           equal[i][k] = at_arc_length(seen, at, seen.back() * double(k) / 4.);
           if(q && k > 0) equal[i][k] = sharpest_turn_near(*q, seen, equal[i][k], seen.back() / 32.);
+          // Corners where 3D arc lengths put them too leave strip() to place them (the
+          // layouts of round tubes stay as they were).
           along_tube = along_tube || equal[i][k] != at_arc_length(s, at, s.back() * double(k) / 4.);
         }
         equal_sine = std::min(equal_sine, corner_sine(p[i], equal[i], axis[i]));

@@ -504,9 +504,10 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
     for(std::size_t n = 0; n < nn; ++n) under[n] = probe.thickness(outer[n], node_normal[n]);
     std::vector<double> seen = under;
     for(const auto& arc : layout.arcs)
-      for(int e = 0; e < 2; ++e)
-        if(!(under[arc.nodes[std::size_t(e)]] < infinity))
-          seen[arc.nodes[std::size_t(e)]] = std::min(seen[arc.nodes[std::size_t(e)]], under[arc.nodes[std::size_t(1 - e)]]);
+      for(std::size_t e = 0; e < 2; ++e) {
+        const std::size_t n = arc.nodes[e], other = arc.nodes[1 - e];
+        if(!(under[n] < infinity)) seen[n] = std::min(seen[n], under[other]);
+      }
     for(std::size_t n = 0; n < nn; ++n) depth[n] = std::min(depth[n], o.maximum_thickness_fraction * seen[n]);
   }
   // A node capped by the thickness would tilt the inner arcs and walls around it: the depth

@@ -107,10 +107,9 @@ inline std::vector<double> section_arc_length(const std::vector<Eigen::Vector2d>
 /// The vertex of the closed polyline `q` (a loop seen along a tube, in_mean_plane()) within
 /// `window` of arc length (`s`, as section_arc_length()) of vertex `c` where `q` turns the
 /// most towards its inside, if by more than `min_turn_degrees` (the first such if several);
-/// else `c`. A section corner
-/// beside a knife edge goes onto it: blade.off's edges turn by 72 degrees at one vertex, and
-/// a corner 0.25 from one left the patch on one side wrapped round the edge, a sliver corner
-/// and a slab that folds.
+/// else `c`. A section corner beside a knife edge goes onto it: blade.off's edges turn by 72
+/// degrees at one vertex, and a corner 0.25 from one left the patch on one side wrapped round
+/// the edge, a sliver corner and a slab that folds.
 inline std::size_t sharpest_turn_near(const std::vector<Eigen::Vector2d>& q, const std::vector<double>& s, std::size_t c,
                                       double window, double min_turn_degrees = 60.)
 {
