@@ -12,9 +12,11 @@
 #include <CGAL/Polycube_IGA/Cuboid_decomposition.h>
 #include <CGAL/Polycube_IGA/Boundary_distance.h>
 #include <CGAL/Polycube_IGA/Errors.h>
+#include <CGAL/Polycube_IGA/Layout_arc_relaxation.h>
 #include <CGAL/Polycube_IGA/Layout_volume.h>
 #include <CGAL/Polycube_IGA/Polycube_layout.h>
 #include <CGAL/Polycube_IGA/Surface_topology.h>
+#include <CGAL/Polycube_IGA/internal/layout_corner_angles.h>
 #include <CGAL/Polycube_IGA/parameters.h>
 #include <CGAL/Polygon_mesh_processing/compute_normal.h>
 
@@ -56,53 +58,6 @@ inline std::string triple_text(double a, double b, double c)
 /// A surface patch corner below this many degrees, or above 180 minus it, is reported when
 /// the volume is not valid.
 constexpr double sliver_corner_degrees = 25.;
-
-/// Interior angles (degrees) of every SURFACE patch at its four corners, measured on the
-/// mesh: between the directions to the points a quarter of the way along the two arcs
-/// leaving the corner (the patch's shape there, not the teeth or hooks of a vertex path on
-/// a coarse mesh, which an eighth still sees on sphere.off), reflex (360 minus it) where they
-/// turn clockwise about the node's outward vertex normal (patches are counter-clockwise
-/// seen from outside). An arc is followed no farther than its vertex normals stay within 60
-/// degrees of the node's: past a sharp edge (around a thin blade's edge) the chord would
-/// point through the solid, and a blade's every corner read reflex. A box's corners measure
-/// 90 degrees; in [0, 360).
-template <class Point_3>
-std::vector<std::array<double, 4>> surface_corner_angles(const Polycube_layout<Point_3>& L)
-{
-  using Layout = Polycube_layout<Point_3>;
-  using Vertex = typename Layout::vertex_descriptor;
-  auto unit_normal = [&](Vertex v) {
-    const auto n = CGAL::Polygon_mesh_processing::compute_vertex_normal(v, L.mesh);
-    return Eigen::Vector3d(CGAL::to_double(n.x()), CGAL::to_double(n.y()), CGAL::to_double(n.z())).normalized();
-  };
-  // From node n along arc a: the first vertex past a quarter of the arc's length, or the
-  // last before the surface turns away from the node's `normal`.
-  auto direction = [&](std::size_t a, std::size_t n, const Eigen::Vector3d& normal) {
-    std::vector<Vertex> vs(L.arcs[a].vertices.begin(), L.arcs[a].vertices.end());
-    if(L.arcs[a].nodes[0] != n) std::reverse(vs.begin(), vs.end());
-    std::vector<Eigen::Vector3d> path;
-    for(Vertex v : vs) path.push_back(to_eigen_point(L.mesh.point(v)));
-    const std::vector<double> length = cumulative_lengths(path);
-    const double turned_away = 0.5; // the cosine of 60 degrees
-    std::size_t k = 1;
-    while(k + 1 < path.size() && length[k - 1] < length.back() / 4. && unit_normal(vs[k + 1]).dot(normal) > turned_away) ++k;
-    return Eigen::Vector3d(path[std::min(k, path.size() - 1)] - path[0]);
-  };
-  std::vector<std::array<double, 4>> angles(L.patches.size(), {{0., 0., 0., 0.}});
-  for(std::size_t p = 0; p < L.patches.size(); ++p) {
-    const auto& pa = L.patches[p];
-    if(pa.kind != Layout::SURFACE) continue;
-    for(int i = 0; i < 4; ++i) {
-      const std::size_t n = pa.corners[std::size_t(i)];
-      const Eigen::Vector3d normal = unit_normal(L.nodes[n]);
-      const Eigen::Vector3d next = direction(pa.arcs[std::size_t(i)], n, normal);
-      const Eigen::Vector3d previous = direction(pa.arcs[std::size_t((i + 3) % 4)], n, normal);
-      const double a = std::atan2(next.cross(previous).norm(), next.dot(previous)) * 180. / CGAL_PI;
-      angles[p][std::size_t(i)] = normal.dot(next.cross(previous)) >= 0. ? a : 360. - a;
-    }
-  }
-  return angles;
-}
 
 /// The corners of a layout's surface patches as surface_corner_angles() measures them on the
 /// mesh: how far they are from right angles, and how many would let a fitted face degenerate
@@ -269,6 +224,9 @@ struct Trivariate_model
   /// True when a cylinder's section corners were moved off the steps of its cut ends
   /// (Cuboid_decomposition's `corners_off_steps`; see `step_retry` in build_trivariate_model()).
   bool corners_off_steps = false;
+  /// What the arc relaxation did, when the layout's arcs were relaxed (see
+  /// `arc_relaxation_sweeps` in build_trivariate_model()); sweeps 0 otherwise.
+  Arc_relaxation_result arc_relaxation;
 
   /// True when every patch's det J is certified positive and the boundary is within
   /// `maximum_boundary_distance` of the mesh.
@@ -343,6 +301,8 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
   if(sweeps < 0) throw Invalid_input_error("invalid_parameter", "grid_relaxation_sweeps must not be negative");
   const int stretch_rounds = int(option(np, internal_np::stretch_rounds, 3));
   if(stretch_rounds < 0) throw Invalid_input_error("invalid_parameter", "stretch_rounds must not be negative");
+  const int arc_sweeps = int(option(np, internal_np::arc_relaxation_sweeps, 0));
+  if(arc_sweeps < 0) throw Invalid_input_error("invalid_parameter", "arc_relaxation_sweeps must not be negative");
   Surface_topology_result<TriangleMesh> topology;
   stage("topology", [&] { topology = internal::cutting_topology(tm); });
   for(const auto& w : topology.warnings) model.warnings.push_back(w);
@@ -356,6 +316,8 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
                                          .corners_off_steps(variant.corners_off_steps));
   });
   if(unless_nodes && node_points(model.layout) == *unless_nodes) return std::nullopt;
+  if(arc_sweeps > 0)
+    stage("arc relaxation", [&] { model.arc_relaxation = relax_layout_arcs(model.layout, arc_sweeps); });
   if(model.layout.turned_outwards)
     model.warnings.push_back("the input's faces point into the solid; the layout and the volume use them turned outwards");
   stage("layout validation", [&] { model.layout_validation = model.layout.validate(); });
@@ -650,6 +612,9 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
 /// `step_retry` (true): a cylinder whose volume is not valid is built again with its section
 /// corners moved off the steps of its cut ends (`corners_off_steps`), when that moves any,
 /// and that volume is kept if it is valid.
+/// `arc_relaxation_sweeps` (0): sweeps of relax_layout_arcs() on every layout before its
+/// volume is built (Layout_arc_relaxation.h): corners nearer right angles (anchor.off: mean
+/// deviation 42 -> 33 degrees at 3 sweeps), so far without a volume that becomes valid.
 /// Throws the stages' errors; an invalid layout becomes Internal_error("invalid_layout").
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
 auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values(),

@@ -9,6 +9,7 @@
 #include "test_support.h"
 
 #include <CGAL/Polycube_IGA/Cuboid_decomposition.h>
+#include <CGAL/Polycube_IGA/Layout_arc_relaxation.h>
 #include <CGAL/Polycube_IGA/Pants_decomposition.h>
 #include <CGAL/Polycube_IGA/internal/feature_curves.h>
 #include <CGAL/Polycube_IGA/internal/loop_corners.h>
@@ -545,4 +546,74 @@ TEST_CASE("cuboid decomposition orients its surface patches outwards whatever th
       }
     }
   }
+}
+
+namespace {
+
+struct Corner_figures
+{
+  double mean_deviation = 0.; // mean |angle - 90| over the surface patches' corners
+  std::size_t slivers = 0;    // corners under 25 degrees
+};
+
+Corner_figures corner_figures(const Layout& L)
+{
+  Corner_figures c;
+  std::size_t n = 0;
+  const auto angles = PI::internal::surface_corner_angles(L);
+  for(std::size_t p = 0; p < L.patches.size(); ++p)
+    if(L.patches[p].kind == Layout::SURFACE)
+      for(double a : angles[p]) {
+        c.mean_deviation += std::abs(a - 90.);
+        c.slivers += a < 25.;
+        ++n;
+      }
+  c.mean_deviation /= double(n);
+  return c;
+}
+
+} // namespace
+
+TEST_CASE("arc relaxation brings a CAD part's corners nearer right angles and keeps its layout", "[cuboid][arcs]")
+{
+  const Mesh m = load(data("joint.off"));
+  const Layout L0 = decompose(m);
+  Layout L = L0;
+  const PI::Arc_relaxation_result r = PI::relax_layout_arcs(L, 2);
+  check_layout(m, L);
+  const Corner_figures before = corner_figures(L0), after = corner_figures(L);
+  INFO("mean deviation " << before.mean_deviation << " -> " << after.mean_deviation << ", slivers " << before.slivers << " -> "
+                         << after.slivers);
+  CHECK(r.arcs_moved > 0);
+  CHECK(r.squared_deviation_after < r.squared_deviation_before);
+  CHECK(after.mean_deviation < before.mean_deviation - 5.); // 52 -> 40 degrees
+  CHECK(after.slivers < before.slivers);
+  // Only arcs and face sets change: nodes, corners, cuboids stay; every new vertex lies on
+  // an edge of the old mesh (the area check above), and every arc joins its two nodes.
+  REQUIRE(L.nodes.size() == L0.nodes.size());
+  for(std::size_t n = 0; n < L.nodes.size(); ++n) CHECK(L.mesh.point(L.nodes[n]) == L0.mesh.point(L0.nodes[n]));
+  for(std::size_t p = 0; p < L.patches.size(); ++p) CHECK(L.patches[p].corners == L0.patches[p].corners);
+  for(const auto& a : L.arcs) {
+    CHECK(a.vertices.front() == L.nodes[a.nodes[0]]);
+    CHECK(a.vertices.back() == L.nodes[a.nodes[1]]);
+  }
+  // Deterministic.
+  Layout again = L0;
+  PI::relax_layout_arcs(again, 2);
+  bool same = num_vertices(again.mesh) == num_vertices(L.mesh);
+  for(std::size_t a = 0; same && a < L.arcs.size(); ++a) same = again.arcs[a].vertices == L.arcs[a].vertices;
+  for(std::size_t p = 0; same && p < L.patches.size(); ++p) same = again.patches[p].faces == L.patches[p].faces;
+  CHECK(same);
+}
+
+TEST_CASE("arc relaxation leaves a box laid out on its own right-angled edges as it is", "[cuboid][arcs]")
+{
+  const Mesh m = load(data("cube-meshed.off"));
+  Layout L = decompose(m);
+  const std::size_t vertices_before = num_vertices(L.mesh);
+  const PI::Arc_relaxation_result r = PI::relax_layout_arcs(L, 3);
+  CHECK(r.arcs_moved == 0);
+  CHECK(r.sweeps == 1);
+  CHECK(num_vertices(L.mesh) == vertices_before); // not refined either
+  check_layout(m, L);
 }

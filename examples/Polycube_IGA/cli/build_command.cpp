@@ -93,6 +93,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("stretch_rounds", model.stretch_rounds)
       .member("belt_phase", model.belt_phase)
       .member("corners_off_steps", model.corners_off_steps)
+      .member("arcs_relaxed", model.arc_relaxation.arcs_moved)
       .member("relaxation_sweeps", V.relaxation.sweeps)
       .member("relaxation_last_move", V.relaxation.last_move)
       .member("valid", model.is_valid())
@@ -167,7 +168,7 @@ int run_build(const Arguments& args)
                       "--no-untangle", "--no-step-retry"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
                       "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--relax-sweeps", "--stretch-rounds",
-                      "--sharp-boundary-turn", "--belt-phases"});
+                      "--sharp-boundary-turn", "--belt-phases", "--relax-arcs"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
   if(out.empty()) throw PI::Invalid_input_error("bad_arguments", "build needs -o OUT.xml");
@@ -183,6 +184,7 @@ int run_build(const Arguments& args)
   const int stretch = positive_option(a, "--stretch-rounds", 3, 0, 100);
   const double sharp_turn = fraction_option(a, "--sharp-boundary-turn", 60., 0., 180.);
   const int belt_phases = positive_option(a, "--belt-phases", 4, 1, 8);
+  const int arc_sweeps = positive_option(a, "--relax-arcs", 0, 0, 100);
   const bool verbose = !a.has("--quiet") && isatty(2);
   auto progress = [&](const std::string& stage) {
     if(verbose) std::cerr << "polycube_iga: " << stage << "...\n";
@@ -198,7 +200,7 @@ int run_build(const Arguments& args)
       .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
       .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid)
       .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn).belt_phases(belt_phases)
-      .step_retry(!a.has("--no-step-retry"))
+      .step_retry(!a.has("--no-step-retry")).arc_relaxation_sweeps(arc_sweeps)
       // An invalid volume is not written without --allow-invalid: no time spent improving it.
       .untangle_invalid_result(a.has("--allow-invalid")),
     progress);
@@ -245,7 +247,8 @@ Register_command build_command("build", {
   "                          [--report R.json] [--grid N] [--degree P] [--criterion length|minima|symmetry]\n"
   "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--max-grid M]\n"
   "                          [--min-grid M] [--relax-sweeps S] [--stretch-rounds R]\n"
-  "                          [--sharp-boundary-turn D] [--belt-phases K] [--no-step-retry] [--no-untangle]\n"
+  "                          [--sharp-boundary-turn D] [--belt-phases K] [--no-step-retry] [--relax-arcs K]\n"
+  "                          [--no-untangle]\n"
   "                          [--allow-invalid]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
@@ -277,6 +280,9 @@ Register_command build_command("build", {
   "  --no-step-retry   a cylinder (two boundary loops) whose volume is not valid is by default built\n"
   "                    again with its section corners moved off the steps of its cut ends, if any\n"
   "                    is near one; this never does\n"
+  "  --relax-arcs K    before the volume is built, up to K sweeps re-trace each arc between two\n"
+  "                    surface patches as the middle of their union where that brings the\n"
+  "                    corners at its ends nearer right angles (default 0: never)\n"
   "  --boundary-layer T  depth of the layer of slabs under the surface, as a fraction of the\n"
   "                    shortest arc at each node (default 0.25; 0: one patch per cuboid)\n"
   "  --no-untangle     keep the constructed inner control points; by default those of patches\n"

@@ -59,7 +59,8 @@ namespace Polycube_IGA {
   X(maximum_grid_resolution_t, maximum_grid_resolution)                             \
   X(minimum_grid_resolution_t, minimum_grid_resolution)                             \
   X(belt_phases_t, belt_phases)                                                     \
-  X(step_retry_t, step_retry)
+  X(step_retry_t, step_retry)                                                       \
+  X(arc_relaxation_sweeps_t, arc_relaxation_sweeps)
 
 namespace internal_np {
 #define CGAL_POLYCUBE_IGA_DECLARE_TAG(TAG, NAME) enum TAG { NAME };

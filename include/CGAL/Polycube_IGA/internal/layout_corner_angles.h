@@ -1,0 +1,92 @@
+// Copyright (c) 2026 Polycube_IGA contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// The angles of a layout's surface patches at their corners, measured on the mesh. The
+// driver reports them (a sliver or reflex corner is why a fitted face degenerates there)
+// and the arc relaxation (Layout_arc_relaxation.h) moves arcs to bring them nearer 90.
+
+#ifndef CGAL_POLYCUBE_IGA_INTERNAL_LAYOUT_CORNER_ANGLES_H
+#define CGAL_POLYCUBE_IGA_INTERNAL_LAYOUT_CORNER_ANGLES_H
+
+#include <CGAL/Polycube_IGA/Patch_sampling.h>
+#include <CGAL/Polycube_IGA/Polycube_layout.h>
+#include <CGAL/Polygon_mesh_processing/compute_normal.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace CGAL {
+namespace Polycube_IGA {
+namespace internal {
+
+/// Outward unit normal of the layout's mesh at vertex v.
+template <class Point_3>
+Eigen::Vector3d layout_vertex_normal(const Polycube_layout<Point_3>& L, typename Polycube_layout<Point_3>::vertex_descriptor v)
+{
+  const auto n = CGAL::Polygon_mesh_processing::compute_vertex_normal(v, L.mesh);
+  return Eigen::Vector3d(CGAL::to_double(n.x()), CGAL::to_double(n.y()), CGAL::to_double(n.z())).normalized();
+}
+
+/// The direction in which `path` (a vertex path from a node whose outward normal is
+/// `normal`) leaves the node: to its first vertex past a quarter of its length (the path's
+/// shape there, not the teeth or hooks of a vertex path on a coarse mesh, which an eighth
+/// still sees on sphere.off), or to the last before the surface turns more than 60 degrees
+/// away from `normal` (past a sharp edge, around a thin blade's edge, the chord would point
+/// through the solid, and a blade's every corner read reflex).
+template <class Point_3>
+Eigen::Vector3d leaving_direction(const Polycube_layout<Point_3>& L,
+                                  const std::vector<typename Polycube_layout<Point_3>::vertex_descriptor>& path,
+                                  const Eigen::Vector3d& normal)
+{
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(path.size());
+  for(auto v : path) points.push_back(to_eigen_point(L.mesh.point(v)));
+  const std::vector<double> length = cumulative_lengths(points);
+  const double turned_away = 0.5; // the cosine of 60 degrees
+  std::size_t k = 1;
+  while(k + 1 < points.size() && length[k - 1] < length.back() / 4. && layout_vertex_normal(L, path[k + 1]).dot(normal) > turned_away) ++k;
+  return Eigen::Vector3d(points[std::min(k, points.size() - 1)] - points[0]);
+}
+
+/// The interior angle (degrees, in [0, 360)) of SURFACE patch p at its corner i: between the
+/// directions in which its two arcs leave the corner (leaving_direction()), reflex (360
+/// minus it) where they turn clockwise about the node's outward normal (patches are
+/// counter-clockwise seen from outside). A box's corners measure 90 degrees.
+template <class Point_3>
+double surface_corner_angle(const Polycube_layout<Point_3>& L, std::size_t p, int i)
+{
+  const auto& pa = L.patches[p];
+  const std::size_t n = pa.corners[std::size_t(i)];
+  const Eigen::Vector3d normal = layout_vertex_normal(L, L.nodes[n]);
+  auto from_node = [&](std::size_t a) {
+    auto vs = L.arcs[a].vertices;
+    if(L.arcs[a].nodes[0] != n) std::reverse(vs.begin(), vs.end());
+    return leaving_direction(L, vs, normal);
+  };
+  const Eigen::Vector3d next = from_node(pa.arcs[std::size_t(i)]);
+  const Eigen::Vector3d previous = from_node(pa.arcs[std::size_t((i + 3) % 4)]);
+  const double a = std::atan2(next.cross(previous).norm(), next.dot(previous)) * 180. / CGAL_PI;
+  return normal.dot(next.cross(previous)) >= 0. ? a : 360. - a;
+}
+
+/// surface_corner_angle() of every SURFACE patch at its four corners (zeros for the others).
+template <class Point_3>
+std::vector<std::array<double, 4>> surface_corner_angles(const Polycube_layout<Point_3>& L)
+{
+  std::vector<std::array<double, 4>> angles(L.patches.size(), {{0., 0., 0., 0.}});
+  for(std::size_t p = 0; p < L.patches.size(); ++p)
+    if(L.patches[p].kind == Polycube_layout<Point_3>::SURFACE)
+      for(int i = 0; i < 4; ++i) angles[p][std::size_t(i)] = surface_corner_angle(L, p, i);
+  return angles;
+}
+
+} // namespace internal
+} // namespace Polycube_IGA
+} // namespace CGAL
+
+#endif // CGAL_POLYCUBE_IGA_INTERNAL_LAYOUT_CORNER_ANGLES_H
