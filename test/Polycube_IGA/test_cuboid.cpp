@@ -616,4 +616,11 @@ TEST_CASE("arc relaxation leaves a box laid out on its own right-angled edges as
   CHECK(r.sweeps == 1);
   CHECK(num_vertices(L.mesh) == vertices_before); // not refined either
   check_layout(m, L);
+  // A negative number of sweeps is a named error, not a silent no-op.
+  try {
+    PI::relax_layout_arcs(L, -1);
+    FAIL("negative sweeps accepted");
+  } catch(const PI::Error& e) {
+    CHECK(e.reason() == "invalid_parameter");
+  }
 }
