@@ -548,32 +548,6 @@ TEST_CASE("cuboid decomposition orients its surface patches outwards whatever th
   }
 }
 
-namespace {
-
-struct Corner_figures
-{
-  double mean_deviation = 0.; // mean |angle - 90| over the surface patches' corners
-  std::size_t slivers = 0;    // corners under 25 degrees
-};
-
-Corner_figures corner_figures(const Layout& L)
-{
-  Corner_figures c;
-  std::size_t n = 0;
-  const auto angles = PI::internal::surface_corner_angles(L);
-  for(std::size_t p = 0; p < L.patches.size(); ++p)
-    if(L.patches[p].kind == Layout::SURFACE)
-      for(double a : angles[p]) {
-        c.mean_deviation += std::abs(a - 90.);
-        c.slivers += a < 25.;
-        ++n;
-      }
-  c.mean_deviation /= double(n);
-  return c;
-}
-
-} // namespace
-
 TEST_CASE("arc relaxation brings a CAD part's corners nearer right angles and keeps its layout", "[cuboid][arcs]")
 {
   const Mesh m = load(data("joint.off"));
@@ -581,7 +555,7 @@ TEST_CASE("arc relaxation brings a CAD part's corners nearer right angles and ke
   Layout L = L0;
   const PI::Arc_relaxation_result r = PI::relax_layout_arcs(L, 2);
   check_layout(m, L);
-  const Corner_figures before = corner_figures(L0), after = corner_figures(L);
+  const auto before = PI::internal::layout_corner_statistics(L0), after = PI::internal::layout_corner_statistics(L);
   INFO("mean deviation " << before.mean_deviation << " -> " << after.mean_deviation << ", slivers " << before.slivers << " -> "
                          << after.slivers);
   CHECK(r.arcs_moved > 0);

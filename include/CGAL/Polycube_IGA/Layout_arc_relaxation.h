@@ -14,8 +14,9 @@
 // grows with the polar angle), and its level 1/2 runs between the two sides in the
 // middle. The level is inserted into the mesh (the edges it crosses are split where it
 // crosses them, so the surface does not move and the arc is as smooth as the function),
-// and the new arc kept only when the four corners at its ends come nearer right angles. Nodes, patch corners, cuboids and interfaces do not change: only
-// the arc's vertices and the two patches' face sets, so the layout stays valid.
+// and the new arc kept only when the four corners at its ends come nearer right angles.
+// Nodes, patch corners, cuboids and interfaces do not change: only the arc's vertices and
+// the two patches' face sets, so the layout stays valid.
 
 #ifndef CGAL_POLYCUBE_IGA_LAYOUT_ARC_RELAXATION_H
 #define CGAL_POLYCUBE_IGA_LAYOUT_ARC_RELAXATION_H
@@ -106,7 +107,7 @@ bool relax_arc(Polycube_layout<Point_3>& L, std::size_t a, const std::array<std:
   std::vector<signed char> in_union(num_faces(m), 0);
   for(F f : L.patches[pa].faces) in_union[std::size_t(f)] = 1;
   for(F f : L.patches[pb].faces) in_union[std::size_t(f)] = 1;
-  auto inside = [&](H h) { return !is_border(h, m) && std::size_t(face(h, m)) < in_union.size() && in_union[std::size_t(face(h, m))]; };
+  auto inside = [&](H h) { return !is_border(h, m) && in_union[std::size_t(face(h, m))]; };
   auto edge_inside = [&](H h) { return inside(h) && inside(opposite(h, m)); };
   // Border values: 0 on patch a's other arcs, 1 on patch b's, 1/2 at the arc's nodes. The
   // border's halfedges whose faces are in the union seed the two sides' flood fills.
@@ -203,11 +204,11 @@ bool relax_arc(Polycube_layout<Point_3>& L, std::size_t a, const std::array<std:
         if(t >= 0. && edge_inside(h) && seen.insert(std::size_t(edge(h, m))).second) splits.push_back({{{source(h, m), target(h, m)}}, t});
       }
   std::map<std::pair<V, V>, V> split_vertex;
+  value.resize(num_vertices(m) + splits.size(), std::numeric_limits<double>::quiet_NaN()); // a vertex per split
   for(const auto& sp : splits) {
     const H h = halfedge(sp.first[0], sp.first[1], m).first;
     const V n = target(split_edge_at(m, h, sp.second), m);
     split_vertex[{sp.first[0], sp.first[1]}] = split_vertex[{sp.first[1], sp.first[0]}] = n;
-    if(std::size_t(n) >= value.size()) value.resize(std::size_t(n) + 1, std::numeric_limits<double>::quiet_NaN());
     value[std::size_t(n)] = 0.5;
   }
   in_union.resize(num_faces(m), 1); // the new faces were cut from the union's
