@@ -7,7 +7,10 @@
 //   topology  Surface_topology<Mesh>()(mesh, compute_tunnel_loops(false)): what the pants
 //             decomposition needs (genus, boundary loops, g handle loops)
 //   pants     Pants_decomposition<Mesh>()(mesh, surface_topology(topology)): slicing along
-//             the handle loops and tracing the 3g+b-3 cut cycles (default LENGTH criterion)
+//             the handle loops and tracing the 3g+b-3 cut cycles (default LENGTH criterion,
+//             cuts traced around up to 16 pairs of holes per step, cut_pair_trials)
+//   one_pair  the same with cut_pair_trials(1): the cut around the most promising pair
+//             alone, what the trials cost is the ratio pants / one_pair
 // Their sum is the whole stage as `pants_decomposition(mesh)` runs it. validate() is run
 // once on the result (its time is an extra field, its verdict the field `valid`).
 // Baseline, same mesh, same run: one CHOLMOD supernodal factorization and one solve of
@@ -89,6 +92,17 @@ void run_case(const Options& opt, const Case& c)
     }
   }
 
+  double t_one_pair = std::numeric_limits<double>::infinity();
+  if(!failed) {
+    try {
+      t_one_pair = best_time(opt.repetitions, [&] {
+        PI::Pants_decomposition<Mesh>()(mesh, PIP::surface_topology(topo).cut_pair_trials(1));
+      });
+    } catch(const PI::Error& e) {
+      std::cerr << "pants: " << name << ": one_pair error: " << e.reason() << ": " << e.what() << "\n";
+    }
+  }
+
   bool valid = false;
   double t_validate = 0;
   if(!failed) {
@@ -119,6 +133,7 @@ void run_case(const Options& opt, const Case& c)
   std::vector<std::pair<std::string, double>> stages = {{"topology", t_topology}};
   if(!failed) {
     stages.push_back({"pants", t_pants});
+    stages.push_back({"one_pair", t_one_pair});
     stages.push_back({"total", t_topology + t_pants});
   }
   char label[96];

@@ -277,7 +277,8 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
                                          .criterion_strength(option(np, internal_np::criterion_strength, 1.0))
                                          .maximum_refinements(option(np, internal_np::maximum_refinements, 2))
                                          .belt_phase(variant.belt_phase)
-                                         .corners_off_steps(variant.corners_off_steps));
+                                         .corners_off_steps(variant.corners_off_steps)
+                                         .cut_pair_trials(option(np, internal_np::cut_pair_trials, default_cut_pair_trials)));
   });
   if(unless_nodes && node_points(model.layout) == *unless_nodes) return std::nullopt;
   if(arc_sweeps > 0)

@@ -170,6 +170,46 @@ TEST_CASE("generated plates of genus 1 with 1 and 2 boundary loops", "[pants][ge
   check_pants(m2, Pants()(m2), 1, 2);
 }
 
+namespace {
+/// Longest handle loop and longest cut of a decomposition.
+std::pair<double, double> longest_handle_and_cut(const Pants::Result& r)
+{
+  double handle = 0, cut = 0;
+  for(const auto& c : r.cycles) {
+    if(c.kind == PI::Pants_cycle<Mesh>::HANDLE_LOOP) handle = std::max(handle, c.length);
+    if(c.kind == PI::Pants_cycle<Mesh>::CUT) cut = std::max(cut, c.length);
+  }
+  return {handle, cut};
+}
+} // namespace
+
+TEST_CASE("the cuts of a plate with holes are meridians of its bars", "[pants][pairs]")
+{
+  // plate5.off: its handle loops are meridians of bars between holes (2.5 to 2.8 long). The
+  // pair with the shortest estimate alone gave cuts around whole junctions (up to 9.1 long),
+  // parallel strips of pants between the rows of holes; traced and compared, the pairs' cuts
+  // are meridians too (up to 3.6).
+  const Mesh m = load(data("plate5.off"));
+  const Pants::Result r = Pants()(m);
+  check_pants(m, r, 5, 0);
+  const auto [handle, cut] = longest_handle_and_cut(r);
+  CHECK(cut <= 1.5 * handle);
+  const Pants::Result greedy = Pants()(m, PIP::cut_pair_trials(1));
+  check_pants(m, greedy, 5, 0);
+  CHECK(longest_handle_and_cut(greedy).second > 3 * handle);
+}
+
+TEST_CASE("cut_pair_trials below 1 is rejected", "[pants][bad]")
+{
+  const Mesh m = load(data("eight.off"));
+  try {
+    Pants()(m, PIP::cut_pair_trials(0));
+    FAIL("no error");
+  } catch(const PI::Invalid_input_error& e) {
+    CHECK(e.reason() == "invalid_parameter");
+  }
+}
+
 TEST_CASE("surfaces with non-negative Euler characteristic have no pants decomposition", "[pants][bad]")
 {
   for(const char* file : {"sphere.off", "mushroom.off", "blade.off", "torus.obj"}) {

@@ -168,7 +168,7 @@ int run_build(const Arguments& args)
                       "--no-untangle", "--no-step-retry"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
                       "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--relax-sweeps", "--stretch-rounds",
-                      "--sharp-boundary-turn", "--belt-phases", "--relax-arcs"});
+                      "--sharp-boundary-turn", "--belt-phases", "--relax-arcs", "--cut-pair-trials"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
   if(out.empty()) throw PI::Invalid_input_error("bad_arguments", "build needs -o OUT.xml");
@@ -185,6 +185,7 @@ int run_build(const Arguments& args)
   const double sharp_turn = fraction_option(a, "--sharp-boundary-turn", 60., 0., 180.);
   const int belt_phases = positive_option(a, "--belt-phases", 4, 1, 8);
   const int arc_sweeps = positive_option(a, "--relax-arcs", 0, 0, 100);
+  const int pair_trials = positive_option(a, "--cut-pair-trials", PI::default_cut_pair_trials, 1, 1000);
   const bool verbose = !a.has("--quiet") && isatty(2);
   auto progress = [&](const std::string& stage) {
     if(verbose) std::cerr << "polycube_iga: " << stage << "...\n";
@@ -200,7 +201,7 @@ int run_build(const Arguments& args)
       .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
       .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid)
       .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn).belt_phases(belt_phases)
-      .step_retry(!a.has("--no-step-retry")).arc_relaxation_sweeps(arc_sweeps)
+      .step_retry(!a.has("--no-step-retry")).arc_relaxation_sweeps(arc_sweeps).cut_pair_trials(pair_trials)
       // An invalid volume is not written without --allow-invalid: no time spent improving it.
       .untangle_invalid_result(a.has("--allow-invalid")),
     progress);
@@ -248,7 +249,7 @@ Register_command build_command("build", {
   "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--max-grid M]\n"
   "                          [--min-grid M] [--relax-sweeps S] [--stretch-rounds R]\n"
   "                          [--sharp-boundary-turn D] [--belt-phases K] [--no-step-retry] [--relax-arcs K]\n"
-  "                          [--no-untangle]\n"
+  "                          [--cut-pair-trials K] [--no-untangle]\n"
   "                          [--allow-invalid]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
@@ -283,6 +284,9 @@ Register_command build_command("build", {
   "  --relax-arcs K    before the volume is built, up to K sweeps re-trace each arc between two\n"
   "                    surface patches as the middle of their union where that brings the\n"
   "                    corners at its ends nearer right angles (default 0: never)\n"
+  "  --cut-pair-trials K  the pants stage traces the cuts around the K most promising pairs of\n"
+  "                    holes at each step and takes the most promising one whose cut is within\n"
+  "                    10% of the lightest (default 16; 1: the most promising pair alone)\n"
   "  --boundary-layer T  depth of the layer of slabs under the surface, as a fraction of the\n"
   "                    shortest arc at each node (default 0.25; 0: one patch per cuboid)\n"
   "  --no-untangle     keep the constructed inner control points; by default those of patches\n"

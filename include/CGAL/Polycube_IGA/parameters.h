@@ -34,6 +34,7 @@ namespace Polycube_IGA {
   X(cut_criterion_t, cut_criterion)                                                 \
   X(symmetry_plane_t, symmetry_plane)                                               \
   X(criterion_strength_t, criterion_strength)                                       \
+  X(cut_pair_trials_t, cut_pair_trials)                                             \
   X(surface_topology_t, surface_topology)                                           \
   /* cuboid decomposition */                                                        \
   X(belt_phase_t, belt_phase)                                                       \
