@@ -36,6 +36,7 @@
 #include <CGAL/Polycube_IGA/internal/mesh_graph.h>
 #include <CGAL/Polycube_IGA/internal/mesh_refinement.h>
 #include <CGAL/Polycube_IGA/internal/min_cut.h>
+#include <CGAL/Polycube_IGA/internal/parallel_for.h>
 #include <CGAL/Polycube_IGA/internal/shortest_path_tree.h>
 
 #include <CGAL/Surface_mesh.h>
@@ -756,10 +757,12 @@ private:
       std::vector<std::vector<char>> sides(tried);
       std::vector<std::vector<int>> loops(tried);
       std::vector<Cycle_edges> loop_edges(tried);
-      for(std::size_t n = 0; n < tried; ++n) {
+      // Each trial reads the region and writes its own slot: traced on every core, chosen
+      // in candidate order below (the same result on any number of threads).
+      internal::parallel_for(tried, 0, [&](std::size_t n, unsigned) {
         value[n] = trial(candidates[n].i, candidates[n].j, sides[n], loops[n], loop_edges[n]);
-        best = std::min(best, value[n]);
-      }
+      });
+      for(double x : value) best = std::min(best, x);
       for(std::size_t n = 0; n < tried && bi < 0; ++n)
         if(value[n] < infinity && value[n] <= 1.1 * best) {
           bi = candidates[n].i; bj = candidates[n].j;
