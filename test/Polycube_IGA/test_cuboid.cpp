@@ -548,6 +548,26 @@ TEST_CASE("cuboid decomposition orients its surface patches outwards whatever th
   }
 }
 
+TEST_CASE("a plate's layout on meridian cuts has few sliver corners", "[cuboid][pants]")
+{
+  // plate5.off: cut around the most promising pairs of holes alone (cut_pair_trials 1), the
+  // band between its rows of holes became parallel strips of pants, whose patches meet the
+  // cycles at slivers; cut along its bars' meridians (the default), its corners are near
+  // right angles and its volume is valid.
+  const Mesh m = load(data("plate5.off"));
+  const Layout L = decompose(m);
+  check_layout(m, L);
+  const Layout strips = PI::Cuboid_decomposition<Mesh>()(m, PI::parameters::cut_pair_trials(1));
+  check_layout(m, strips);
+  const auto s = PI::internal::layout_corner_statistics(L), t = PI::internal::layout_corner_statistics(strips);
+  INFO("mean deviation " << t.mean_deviation << " -> " << s.mean_deviation << ", slivers " << t.slivers << " -> " << s.slivers
+                         << ", nearly flat " << t.nearly_flat << " -> " << s.nearly_flat);
+  CHECK(L.cuboids.size() == 32);
+  CHECK(s.mean_deviation < t.mean_deviation - 5.);
+  CHECK(4 * s.slivers < t.slivers);
+  CHECK(s.slivers + s.nearly_flat + s.reflex <= 12);
+}
+
 TEST_CASE("arc relaxation brings a CAD part's corners nearer right angles and keeps its layout", "[cuboid][arcs]")
 {
   const Mesh m = load(data("joint.off"));
