@@ -657,6 +657,20 @@ private:
       std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) { return a.estimate < b.estimate; });
       if(candidates.empty()) return false;
 
+      // Cut weights, the same for every pair tried. On a genus-1 surface with boundary loops,
+      // the cut keeps away from the region's holes (weights_away_from(), the metric
+      // internal::cutting_topology() gives the handle loop): cuts around a tube are all about
+      // as long, and the shortest ran beside one hole, leaving a pants with no room between its
+      // boundaries (a torus with two opposite square holes: invalid at every grid; cut midway,
+      // valid at the first). Not at genus 0 (mech-holes-shark.off 9 -> 2 uncertified, a star
+      // of five tubes 1 -> 2) nor at genus >= 2 (3holes.obj, ring4.off, chain6.off and
+      // plate6.off lost their valid volumes).
+      std::vector<int> hole_vertices;
+      if(genus_1_with_holes)
+        for(const Hole& h : holes)
+          for(int v : cycles[h.cycle].vertices) hole_vertices.push_back(v);
+      const std::vector<double> w_cut = weights_away_from(g, hole_vertices, w);
+
       // The cut around holes bi and bj: its weight (infinite when none fits), the region's
       // faces on its pants' side and the cycle, oriented with that pants on its left
       // (Algorithm 2).
@@ -698,18 +712,6 @@ private:
         // Minimum cut in the dual graph of the region; edges touching a cycle are uncuttable.
         // The region is planar: a shortest separating cycle (separating_cycle_cut()); the
         // maximum flow where that does not apply.
-        // On a genus-1 surface with boundary loops, the cut keeps away from the region's holes
-        // (weights_away_from(), the metric internal::cutting_topology() gives the handle loop):
-        // cuts around a tube are all about as long, and the shortest ran beside one hole,
-        // leaving a pants with no room between its boundaries (a torus with two opposite square
-        // holes: invalid at every grid; cut midway, valid at the first). Not at genus 0
-        // (mech-holes-shark.off 9 -> 2 uncertified, a star of five tubes 1 -> 2) nor at genus
-        // >= 2 (3holes.obj, ring4.off, chain6.off and plate6.off lost their valid volumes).
-        std::vector<int> hole_vertices;
-        if(genus_1_with_holes)
-          for(const Hole& h : holes)
-            for(int v : cycles[h.cycle].vertices) hole_vertices.push_back(v);
-        const std::vector<double> w_cut = weights_away_from(g, hole_vertices, w);
         const Cut_problem problem{g, w_cut, is_cut, on_cycle, pants_of, source, sink};
         double value = separating_cycle_cut(problem, side);
         if(value < infinity) {
@@ -752,7 +754,7 @@ private:
       std::vector<int> new_cycle;
       Cycle_edges c;
       double best = infinity;
-      const std::size_t tried = std::min<std::size_t>(candidates.size(), std::size_t(std::max(1, pair_trials)));
+      const std::size_t tried = std::min(candidates.size(), std::size_t(pair_trials)); // pair_trials >= 1
       std::vector<double> value(tried, infinity);
       std::vector<std::vector<char>> sides(tried);
       std::vector<std::vector<int>> loops(tried);
