@@ -149,6 +149,10 @@ inline std::vector<std::string> invalidity_reasons(const Layout_volume_result& v
 /// coarser retry).
 inline int default_minimum_grid_resolution(int grid) { return grid / 2 >= 8 ? grid / 2 : grid; }
 
+/// The default `minimum_spline_degree` of build_trivariate_model() for splines of `degree`:
+/// quadratic (C1 across knots, what IGA solvers most often take) when the degree is higher.
+inline int default_minimum_spline_degree(int degree) { return std::min(2, degree); }
+
 /// \ingroup PkgPolycubeIGARef
 /// Everything `build_trivariate_model()` produced.
 template <class Point_3>
@@ -174,6 +178,8 @@ struct Trivariate_model
   /// The grid resolutions the volume was built with, in order; the last valid one, or else
   /// the first, is `volume` (see `maximum_grid_resolution` in build_trivariate_model()).
   std::vector<int> grid_attempts;
+  /// The spline degree of each of `grid_attempts` (see `minimum_spline_degree`).
+  std::vector<int> degree_attempts;
   /// True when the volume at the first grid was invalid and was built again on relaxed
   /// surface grids (`grid_relaxation_sweeps`); `volume.relaxation` says whether it was kept.
   bool relaxation_attempted = false;
@@ -261,6 +267,9 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
                                       default_minimum_grid_resolution(volume_options.sampling.grid_segments)));
   if(minimum_grid < 2)
     throw Invalid_input_error("invalid_parameter", "minimum_grid_resolution must be at least 2 samples per patch side");
+  const int minimum_degree = int(option(np, internal_np::minimum_spline_degree, default_minimum_spline_degree(volume_options.degree)));
+  if(minimum_degree < 1 || minimum_degree > volume_options.degree)
+    throw Invalid_input_error("invalid_parameter", "minimum_spline_degree must be from 1 to the spline degree");
   const int sweeps = int(option(np, internal_np::grid_relaxation_sweeps, 100));
   if(sweeps < 0) throw Invalid_input_error("invalid_parameter", "grid_relaxation_sweeps must not be negative");
   const int stretch_rounds = int(option(np, internal_np::stretch_rounds, 3));
@@ -290,6 +299,7 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
     throw Internal_error("invalid_layout", "the polycube layout violates an invariant: " + model.layout_validation.problems.front());
   stage("volume construction", [&] { model.volume = layout_volume(model.layout, volume_options); });
   model.grid_attempts.push_back(volume_options.sampling.grid_segments);
+  model.degree_attempts.push_back(volume_options.degree);
   auto far_from_mesh = [&] {
     const std::vector<std::string> reasons = model.invalidity_reasons();
     return std::find(reasons.begin(), reasons.end(), "boundary_distance") != reasons.end();
@@ -429,9 +439,10 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
   const int first_grid = volume_options.sampling.grid_segments;
   // Returns false when the grid could not be built (a stage rejects its grids): the retry is
   // a bonus, the first volume stands.
-  auto retry_on_grid = [&](int N) {
+  auto retry_on_grid = [&](int N, int degree) {
     Layout_volume_options other_grid = volume_options;
     other_grid.sampling.grid_segments = N;
+    other_grid.degree = degree;
     if(relaxation_helped) other_grid.relaxation = relaxation;
     // Four times the rounds per doubling: the finer grid follows the opened-up map with its
     // finer faces. Of the 30 femurs, 27 are valid at 32 samples with 12 rounds (S005 and S027
@@ -442,8 +453,12 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
       other_grid.sampling.stretch_rounds = stretch_rounds * ratio * ratio;
     }
     model.grid_attempts.push_back(N);
-    Layout_volume_result r = attempt("volume construction, grid " + std::to_string(N), other_grid,
-                                     "a grid of " + std::to_string(N) + " samples per patch side");
+    model.degree_attempts.push_back(degree);
+    const bool lower = degree != volume_options.degree;
+    const std::string at_degree = lower ? "degree " + std::to_string(degree) + ", " : "";
+    Layout_volume_result r = attempt("volume construction, " + at_degree + "grid " + std::to_string(N), other_grid,
+                                     (lower ? "at degree " + std::to_string(degree) + ", " : "") + "a grid of " +
+                                       std::to_string(N) + " samples per patch side");
     if(!r.quality_evaluated) return false;
     // Only a valid volume is kept, so it is untangled only if it can become valid: its
     // boundary, which untangling does not move, is near enough and faces the mesh, and no
@@ -455,7 +470,7 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
       not_untangled = why_untangling_cannot_validate(r);
       if(not_untangled.empty()) {
         other_grid.untangling.stop_when_pinned = true;
-        stage("volume untangling, grid " + std::to_string(N), [&] { untangle_layout_volume(model.layout, r, other_grid); });
+        stage("volume untangling, " + at_degree + "grid " + std::to_string(N), [&] { untangle_layout_volume(model.layout, r, other_grid); });
         reasons = internal::invalidity_reasons(r, model.maximum_boundary_distance);
         if(r.untangling.skipped)
           not_untangled = std::to_string(r.untangling.patches.size()) +
@@ -465,20 +480,34 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
       }
     }
     if(reasons.empty()) {
-      model.warnings.push_back("the volume is built on a grid of " + std::to_string(N) + " samples per patch side: at " +
-                               std::to_string(model.volume.samples.segments) + " it was not valid");
+      if(lower)
+        model.warnings.push_back("the volume is built at degree " + std::to_string(degree) + " on a grid of " + std::to_string(N) +
+                                 " samples per patch side: at degree " + std::to_string(volume_options.degree) +
+                                 " no grid tried was valid");
+      else
+        model.warnings.push_back("the volume is built on a grid of " + std::to_string(N) + " samples per patch side: at " +
+                                 std::to_string(model.volume.samples.segments) + " it was not valid");
       model.volume = std::move(r);
       model.stretch_rounds = other_grid.sampling.stretch_rounds;
     } else {
-      model.warnings.push_back("a grid of " + std::to_string(N) + " samples per patch side was tried too and is not valid either (" +
+      model.warnings.push_back((lower ? "at degree " + std::to_string(degree) + ", a grid of " : "a grid of ") + std::to_string(N) +
+                               " samples per patch side was tried too and is not valid either (" +
                                internal::comma_list(reasons) + ")" + (not_untangled.empty() ? "" : "; not untangled: " + not_untangled));
     }
     return true;
   };
   for(int N = 2 * first_grid; N <= maximum_grid && worth_retrying(); N *= 2)
-    if(!retry_on_grid(N)) break;
+    if(!retry_on_grid(N, volume_options.degree)) break;
   for(int N = first_grid / 2; N >= minimum_grid && worth_retrying(); N /= 2)
-    if(!retry_on_grid(N)) break;
+    if(!retry_on_grid(N, volume_options.degree)) break;
+  // Still invalid: lower degrees, down to minimum_spline_degree, on the first grid and the
+  // coarser ones. A lower degree has fewer control points per span and follows the grid's
+  // samples more loosely, so its faces bend less where the surface creases (ring5.off: at
+  // degree 3 a face in its narrow middle hole turns over at every grid, 8 to 32; quadratic
+  // on 8 samples it is valid). Finer grids are not tried again: they did not help above.
+  for(int degree = volume_options.degree - 1; degree >= minimum_degree && worth_retrying(); --degree)
+    for(int N = first_grid; N >= minimum_grid && worth_retrying(); N /= 2)
+      if(!retry_on_grid(N, degree)) break;
   if(first_grid_hopeless && worth_retrying()) { // none was valid
     const bool deferred = untangle && untangle_invalid && other_phases_follow && model.layout.layout_class == Layout_class::sphere;
     if(untangling_deferred) *untangling_deferred = deferred;
@@ -563,6 +592,10 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
 /// volume is rebuilt on grids twice as fine up to this; equal to grid_resolution, never) and
 /// `minimum_grid_resolution` (half grid_resolution if that is 8 or more, else
 /// grid_resolution: a volume still invalid is then rebuilt on grids half as fine down to this).
+/// `minimum_spline_degree` (2, or spline_degree if lower): a volume still invalid is then
+/// rebuilt at each lower degree down to this, on the first grid and the coarser ones down to
+/// `minimum_grid_resolution`; equal to spline_degree, never. `degree_attempts` and
+/// `volume.degree` say which degree was kept.
 /// `grid_relaxation_sweeps` (100) and `stretch_rounds` (3) are those of the second and third
 /// attempts: relaxed surface grids when the first volume is invalid, stretch-reduced patch
 /// maps when the volume is then too far from the mesh (0: no such attempt). The finer grids

@@ -88,7 +88,9 @@ TEST_CASE("build turns every surface class into a multipatch volume", "[build]")
   for(const char* name : {"sphere.off", "torus.obj", "head.off", "eight.off"}) {
     INFO(name);
     const Mesh m = load(data(name));
-    const auto model = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).number_of_spans(2).maximum_grid_resolution(8));
+    // One grid, one degree: the fallbacks have tests of their own.
+    const auto model = PI::build_trivariate_model(
+      m, PI::parameters::grid_resolution(8).number_of_spans(2).maximum_grid_resolution(8).minimum_spline_degree(3));
     REQUIRE(model.layout_validation.is_valid());
     CHECK(model.grid_attempts == std::vector<int>{8});
     // head.off's faces point into the solid: the build says it turned them outwards.
@@ -258,7 +260,8 @@ TEST_CASE("build gives a certified valid volume for a disk, on a finer grid when
   // of the diagonal from the mesh; without stretch-reduced maps the build retries at 16 (one
   // doubling by default), which is valid, and says so.
   const Mesh m = load(data("mushroom.off"));
-  const auto once = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).maximum_grid_resolution(8).stretch_rounds(0));
+  const auto once =
+    PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).maximum_grid_resolution(8).stretch_rounds(0).minimum_spline_degree(3));
   CHECK(once.layout.layout_class == PI::Layout_class::disk);
   CHECK(once.grid_attempts == std::vector<int>{8});
   CHECK_FALSE(once.is_valid());
@@ -499,6 +502,34 @@ TEST_CASE("build falls back to a coarser grid when the finer one is not valid ei
   CHECK_THROWS_AS(PI::build_trivariate_model(m, PI::parameters::minimum_grid_resolution(1)), PI::Invalid_input_error);
 }
 
+TEST_CASE("build falls back to a lower spline degree when no grid is valid at the first", "[build]")
+{
+  // head.off on one grid of 8 samples, without the relaxed and stretched attempts: cubic, 4
+  // control points per direction and patch leave patches uncertified after untangling;
+  // quadratic on the same grid, the volume is valid.
+  const Mesh m = load(data("head.off"));
+  const auto one_grid =
+    PI::parameters::grid_resolution(8).maximum_grid_resolution(8).grid_relaxation_sweeps(0).stretch_rounds(0);
+  const auto cubic = PI::build_trivariate_model(m, one_grid.minimum_spline_degree(3));
+  CHECK_FALSE(cubic.is_valid());
+  CHECK(cubic.degree_attempts == std::vector<int>{3});
+  CHECK(cubic.volume.degree == 3);
+  const auto model = PI::build_trivariate_model(m, one_grid);
+  CHECK(model.grid_attempts == std::vector<int>{8, 8});
+  CHECK(model.degree_attempts == std::vector<int>{3, 2});
+  check_valid_volume(model, 0., 0.02);
+  CHECK(model.volume.degree == 2);
+  for(std::size_t p = 0; p < model.volume.volume.number_of_patches(); ++p)
+    for(int d = 0; d < 3; ++d) CHECK(model.volume.volume.patch(p).knot_vector(d).degree() == 2);
+  bool said = false;
+  for(const auto& w : model.warnings) said = said || w.find("built at degree 2 on a grid of 8 samples per patch side: at degree 3") != std::string::npos;
+  CHECK(said);
+  // A valid first volume is not built again at a lower degree.
+  CHECK(PI::build_trivariate_model(load(data("torus.obj"))).degree_attempts == std::vector<int>{3});
+  CHECK_THROWS_AS(PI::build_trivariate_model(m, PI::parameters::minimum_spline_degree(0)), PI::Invalid_input_error);
+  CHECK_THROWS_AS(PI::build_trivariate_model(m, PI::parameters::minimum_spline_degree(4)), PI::Invalid_input_error);
+}
+
 TEST_CASE("build turns a box into a certified valid volume that is the box", "[build][features]")
 {
   // The layout follows the box's edges (see test_cuboid), so the fitted faces are flat and
@@ -582,7 +613,7 @@ TEST_CASE("build does not untangle a finer grid that cannot become valid, and sa
   const Mesh m = load(data("head.off"));
   std::vector<std::string> stages;
   const auto model =
-    PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).maximum_grid_resolution(16).sharp_boundary_turn(0.),
+    PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).maximum_grid_resolution(16).sharp_boundary_turn(0.).minimum_spline_degree(3),
                                [&](const std::string& s) { stages.push_back(s); });
   REQUIRE(model.grid_attempts == std::vector<int>{8, 16});
   CHECK_FALSE(model.is_valid());
@@ -598,7 +629,7 @@ TEST_CASE("build does not untangle a finer grid that cannot become valid, and sa
   // then it is returned as built, and a warning says why it was not untangled.
   stages.clear();
   const auto as_built = PI::build_trivariate_model(
-    m, PI::parameters::grid_resolution(8).maximum_grid_resolution(16).sharp_boundary_turn(0.).untangle_invalid_result(false),
+    m, PI::parameters::grid_resolution(8).maximum_grid_resolution(16).sharp_boundary_turn(0.).minimum_spline_degree(3).untangle_invalid_result(false),
     [&](const std::string& s) { stages.push_back(s); });
   CHECK(as_built.grid_attempts == model.grid_attempts);
   CHECK_FALSE(as_built.is_valid());

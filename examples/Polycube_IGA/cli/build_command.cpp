@@ -110,6 +110,9 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
     w.key("grid_attempts").begin_array();
     for(int g : model.grid_attempts) w.value(g);
     w.end_array();
+    w.key("degree_attempts").begin_array();
+    for(int d : model.degree_attempts) w.value(d);
+    w.end_array();
     w.key("invalidity_reasons").begin_array();
     for(const auto& r : model.invalidity_reasons()) w.value(r);
     w.end_array();
@@ -167,7 +170,7 @@ int run_build(const Arguments& args)
   Parsed_arguments a(args, {"--merge-duplicates", "--drop-isolated", "--no-self-intersection-test", "--allow-invalid", "--quiet",
                       "--no-untangle", "--no-step-retry"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
-                      "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--relax-sweeps", "--stretch-rounds",
+                      "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--min-degree", "--relax-sweeps", "--stretch-rounds",
                       "--sharp-boundary-turn", "--belt-phases", "--relax-arcs", "--cut-pair-trials"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
@@ -180,6 +183,7 @@ int run_build(const Arguments& args)
   const int refinements = positive_option(a, "--max-refinements", 2, 0, 5);
   const int max_grid = positive_option(a, "--max-grid", std::min(2 * grid, 512), grid, 512);
   const int min_grid = positive_option(a, "--min-grid", PI::default_minimum_grid_resolution(grid), 2, grid);
+  const int min_degree = positive_option(a, "--min-degree", PI::default_minimum_spline_degree(degree), 1, degree);
   const int sweeps = positive_option(a, "--relax-sweeps", 100, 0, 100000);
   const int stretch = positive_option(a, "--stretch-rounds", 3, 0, 100);
   const double sharp_turn = fraction_option(a, "--sharp-boundary-turn", 60., 0., 180.);
@@ -199,7 +203,7 @@ int run_build(const Arguments& args)
   const auto model = PI::build_trivariate_model(
     in.mesh, PI::parameters::grid_resolution(grid).spline_degree(degree).cut_criterion(criterion).boundary_layer(layer)
       .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
-      .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid)
+      .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid).minimum_spline_degree(min_degree)
       .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn).belt_phases(belt_phases)
       .step_retry(!a.has("--no-step-retry")).arc_relaxation_sweeps(arc_sweeps).cut_pair_trials(pair_trials)
       // An invalid volume is not written without --allow-invalid: no time spent improving it.
@@ -247,7 +251,7 @@ Register_command build_command("build", {
   "usage: polycube_iga build MESH -o OUT.xml [--vtu OUT.vtu] [--layout-vtu L.vtu] [--layout-json L.json]\n"
   "                          [--report R.json] [--grid N] [--degree P] [--criterion length|minima|symmetry]\n"
   "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--max-grid M]\n"
-  "                          [--min-grid M] [--relax-sweeps S] [--stretch-rounds R]\n"
+  "                          [--min-grid M] [--min-degree D] [--relax-sweeps S] [--stretch-rounds R]\n"
   "                          [--sharp-boundary-turn D] [--belt-phases K] [--no-step-retry] [--relax-arcs K]\n"
   "                          [--cut-pair-trials K] [--no-untangle]\n"
   "                          [--allow-invalid]\n"
@@ -263,6 +267,8 @@ Register_command build_command("build", {
   "  --min-grid M      if it is still not valid, rebuild it with N/2, N/4, ... samples down to M\n"
   "                    (default N/2 when that is 8 or more, else N: never); fewer spans give\n"
   "                    smoother cuboids with fewer control points to untangle (high genus)\n"
+  "  --min-degree D    if it is still not valid, rebuild it at degree P-1, ... down to D, on the\n"
+  "                    first grid and the coarser ones (default 2, or P if lower; D = P never)\n"
   "  --relax-sweeps S  if the volume is not valid, build it again with the surface grids relaxed\n"
   "                    as one quad mesh on the surface (S sweeps, default 100; 0: never) and keep\n"
   "                    it if fewer patches are left uncertified (the other grids are relaxed if\n"

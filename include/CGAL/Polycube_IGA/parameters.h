@@ -59,6 +59,7 @@ namespace Polycube_IGA {
   X(maximum_boundary_distance_t, maximum_boundary_distance)                         \
   X(maximum_grid_resolution_t, maximum_grid_resolution)                             \
   X(minimum_grid_resolution_t, minimum_grid_resolution)                             \
+  X(minimum_spline_degree_t, minimum_spline_degree)                                 \
   X(belt_phases_t, belt_phases)                                                     \
   X(step_retry_t, step_retry)                                                       \
   X(arc_relaxation_sweeps_t, arc_relaxation_sweeps)
