@@ -456,9 +456,9 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
     model.degree_attempts.push_back(degree);
     const bool lower = degree != volume_options.degree;
     const std::string at_degree = lower ? "degree " + std::to_string(degree) + ", " : "";
-    Layout_volume_result r = attempt("volume construction, " + at_degree + "grid " + std::to_string(N), other_grid,
-                                     (lower ? "at degree " + std::to_string(degree) + ", " : "") + "a grid of " +
-                                       std::to_string(N) + " samples per patch side");
+    // What the warnings call this attempt.
+    const std::string what = (lower ? "at " + at_degree : "") + "a grid of " + std::to_string(N) + " samples per patch side";
+    Layout_volume_result r = attempt("volume construction, " + at_degree + "grid " + std::to_string(N), other_grid, what);
     if(!r.quality_evaluated) return false;
     // Only a valid volume is kept, so it is untangled only if it can become valid: its
     // boundary, which untangling does not move, is near enough and faces the mesh, and no
@@ -490,9 +490,8 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
       model.volume = std::move(r);
       model.stretch_rounds = other_grid.sampling.stretch_rounds;
     } else {
-      model.warnings.push_back((lower ? "at degree " + std::to_string(degree) + ", a grid of " : "a grid of ") + std::to_string(N) +
-                               " samples per patch side was tried too and is not valid either (" +
-                               internal::comma_list(reasons) + ")" + (not_untangled.empty() ? "" : "; not untangled: " + not_untangled));
+      model.warnings.push_back(what + " was tried too and is not valid either (" + internal::comma_list(reasons) + ")" +
+                               (not_untangled.empty() ? "" : "; not untangled: " + not_untangled));
     }
     return true;
   };
