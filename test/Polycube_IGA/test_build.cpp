@@ -507,9 +507,9 @@ TEST_CASE("build falls back to a coarser grid when the finer one is not valid ei
 
 TEST_CASE("build falls back to a lower spline degree when no grid is valid at the first", "[build]")
 {
-  // head.off on one grid of 8 samples, without the relaxed and stretched attempts: cubic, 4
-  // control points per direction and patch leave patches uncertified after untangling;
-  // quadratic on the same grid, the volume is valid.
+  // head.off on one grid of 8 samples (2 spans), without the relaxed and stretched attempts:
+  // cubic (5 control points per direction and patch), patches stay uncertified after
+  // untangling; quadratic (4) on the same grid, the volume is valid.
   const Mesh m = load(data("head.off"));
   const auto one_grid =
     PI::parameters::grid_resolution(8).maximum_grid_resolution(8).grid_relaxation_sweeps(0).stretch_rounds(0);
