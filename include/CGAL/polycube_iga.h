@@ -66,6 +66,16 @@ std::vector<Point_3> node_points(const Polycube_layout<Point_3>& L)
 /// A fraction as a percentage with 3 significant digits.
 inline std::string percent_text(double fraction) { return short_number(100. * fraction) + "%"; }
 
+/// The layout patch holding face `f` of the layout's mesh, or -1.
+template <class Point_3>
+int patch_of_face(const Polycube_layout<Point_3>& layout, std::size_t f)
+{
+  for(std::size_t p = 0; p < layout.patches.size(); ++p)
+    for(auto g : layout.patches[p].faces)
+      if(std::size_t(g) == f) return int(p);
+  return -1;
+}
+
 /// Says where the boundary is too far from the mesh. A mesh point much farther from the
 /// volume than any volume point is from the mesh means a part of the shape is missing,
 /// typically a protrusion that one layout patch covers and its map to the square shrinks to
@@ -78,13 +88,7 @@ std::string boundary_distance_message(const Polycube_layout<Point_3>& layout, co
   auto point = [&](const std::array<double, 3>& p) { return triple_text(p[0], p[1], p[2]); };
   std::string s = "boundary distance " + percent(d.relative) + " of the bounding-box diagonal exceeds " + percent(limit) + ": ";
   if(d.mesh_to_spline >= d.spline_to_mesh) {
-    int patch = -1;
-    for(std::size_t p = 0; p < layout.patches.size() && patch < 0; ++p)
-      for(auto f : layout.patches[p].faces)
-        if(std::size_t(f) == d.farthest_mesh_face) {
-          patch = int(p);
-          break;
-        }
+    const int patch = patch_of_face(layout, d.farthest_mesh_face);
     s += "the mesh point " + point(d.farthest_mesh_point) + " (layout patch " + std::to_string(patch) + ") is " +
          number(d.mesh_to_spline) + " from the volume's boundary";
     s += part_missing(d)
@@ -180,6 +184,9 @@ struct Trivariate_model
   std::vector<int> grid_attempts;
   /// The spline degree of each of `grid_attempts` (see `minimum_spline_degree`).
   std::vector<int> degree_attempts;
+  /// Cubes added to the layout under parts of the shape the volume missed (see
+  /// `missing_part_cubes` in build_trivariate_model()).
+  int missing_part_cubes = 0;
   /// True when the volume at the first grid was invalid and was built again on relaxed
   /// surface grids (`grid_relaxation_sweeps`); `volume.relaxation` says whether it was kept.
   bool relaxation_attempted = false;
@@ -276,6 +283,8 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
   if(stretch_rounds < 0) throw Invalid_input_error("invalid_parameter", "stretch_rounds must not be negative");
   const int arc_sweeps = int(option(np, internal_np::arc_relaxation_sweeps, 0));
   if(arc_sweeps < 0) throw Invalid_input_error("invalid_parameter", "arc_relaxation_sweeps must not be negative");
+  const int missing_part_cubes = int(option(np, internal_np::missing_part_cubes, 2));
+  if(missing_part_cubes < 0) throw Invalid_input_error("invalid_parameter", "missing_part_cubes must not be negative");
   Surface_topology_result<TriangleMesh> topology;
   stage("topology", [&] { topology = internal::cutting_topology(tm); });
   for(const auto& w : topology.warnings) model.warnings.push_back(w);
@@ -333,6 +342,59 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
     for(std::size_t c : patches) list += (list.empty() ? "" : ", ") + std::to_string(c);
     return list;
   };
+  // A part of the shape that the volume misses (internal::part_missing(): a protrusion that
+  // one patch covers and its map to the square shrinks, which Cuboid_decomposition's own
+  // criterion did not see, e.g. elephant.off's hind leg in a patch that holds a flank too)
+  // gets a cube of its own under that patch, the cube's bottom around the farthest mesh
+  // point, and the volume is built again; kept if its boundary comes closer to the mesh.
+  // Before the other attempts, which all keep the layout.
+  for(int round = 0; round < missing_part_cubes && far_from_mesh() && internal::part_missing(model.volume.distance); ++round) {
+    const Boundary_distance d = model.volume.distance;
+    const int patch = internal::patch_of_face(model.layout, d.farthest_mesh_face);
+    if(patch < 0) break;
+    // The vertex of the farthest face nearest the farthest point.
+    const Eigen::Vector3d x(d.farthest_mesh_point[0], d.farthest_mesh_point[1], d.farthest_mesh_point[2]);
+    const auto& mesh = model.layout.mesh;
+    typename Decomposition::V nearest;
+    double best = std::numeric_limits<double>::infinity();
+    for(auto v : vertices_around_face(halfedge(typename Decomposition::Mesh::Face_index(std::uint32_t(d.farthest_mesh_face)), mesh), mesh)) {
+      const double dist = (internal::to_eigen_point(mesh.point(v)) - x).norm();
+      if(dist < best) best = dist, nearest = v;
+    }
+    const std::string where = "layout patch " + std::to_string(patch) + " (the mesh point " +
+                              internal::triple_text(x.x(), x.y(), x.z()) + " " + internal::short_number(d.mesh_to_spline) +
+                              " from the volume)";
+    std::optional<typename Decomposition::Layout> extruded;
+    stage("missing part cube", [&] { extruded = Decomposition::with_cube_under(model.layout, std::size_t(patch), nearest, d.mesh_bbox_diagonal); });
+    if(!extruded) {
+      model.warnings.push_back("a cube under " + where + " does not fit in the patch: the missing part stays missing");
+      break;
+    }
+    const Layout_validation validation = extruded->validate();
+    if(!validation.is_valid()) {
+      model.warnings.push_back("a cube under " + where + " breaks the layout (" + validation.problems.front() + "): not used");
+      break;
+    }
+    Layout_volume_result r;
+    try {
+      stage("volume construction, missing part cube", [&] { r = layout_volume(*extruded, volume_options); });
+    } catch(const Error& e) {
+      model.warnings.push_back("the volume with a cube under " + where + " failed: " + e.reason() + ": " + e.what());
+      break;
+    }
+    if(!(r.quality_evaluated && r.distance.relative < d.relative)) {
+      model.warnings.push_back("a cube under " + where + " was tried and left the boundary " +
+                               internal::percent_text(r.distance.relative) + " of the diagonal from the mesh: not used");
+      break;
+    }
+    model.warnings.push_back(where + " held a part of the shape that its map to the square shrank: it got a cube of its own, "
+                             "and the boundary is " + internal::percent_text(r.distance.relative) +
+                             " of the diagonal from the mesh instead of " + internal::percent_text(d.relative));
+    model.layout = std::move(*extruded);
+    model.layout_validation = validation;
+    model.volume = std::move(r);
+    ++model.missing_part_cubes;
+  }
   std::optional<Layout_volume_result> other; // the construction not chosen, if any
   int other_stretch_rounds = 0;
   // Whether each attempt served its end, kept or not: the finer grids combine those that did.
@@ -612,6 +674,12 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
 /// `arc_relaxation_sweeps` (0): sweeps of relax_layout_arcs() on every layout before its
 /// volume is built (Layout_arc_relaxation.h): corners nearer right angles (anchor.off: mean
 /// deviation 42 -> 33 degrees at 3 sweeps), so far without a volume that becomes valid.
+/// `missing_part_cubes` (2): when the first volume misses a part of the shape (a mesh point
+/// far from it while all of it is near the mesh: a protrusion that a patch's map to the
+/// square shrinks), that patch gets a cube of its own, its bottom around the farthest point
+/// (Cuboid_decomposition::with_cube_under()), and the volume is built again; kept if its
+/// boundary comes closer, up to this many times; 0: never. `missing_part_cubes` of the
+/// model counts those kept.
 /// Throws the stages' errors; an invalid layout becomes Internal_error("invalid_layout").
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
 auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values(),

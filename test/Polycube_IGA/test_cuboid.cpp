@@ -20,6 +20,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <set>
+
 using namespace test_support;
 namespace PI = CGAL::Polycube_IGA;
 using Layout = PI::Polycube_layout<Point>;
@@ -505,6 +507,69 @@ TEST_CASE("a pants layout gives a protrusion cubes of its own: femur.off's shaft
     if(deepest > 0.01 * diagonal) worst = std::max(worst, deepest / around);
   }
   CHECK(worst <= 0.25);
+}
+
+TEST_CASE("with_cube_under gives a layout patch a cube of its own around a vertex", "[cuboid]")
+{
+  // What build_trivariate_model() does where its volume misses a part of the shape: the
+  // patch becomes an interface, the cube's other five sides tile its faces, and the cube's
+  // bottom holds the vertex asked for.
+  using Decomposition = PI::Cuboid_decomposition<Mesh>;
+  const Mesh m = load(data("eight.off"));
+  const Layout L = decompose(m);
+  const auto box = CGAL::Polygon_mesh_processing::bbox(m);
+  const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) + CGAL::square(box.zmax() - box.zmin()));
+  std::set<Layout::vertex_descriptor> on_arcs;
+  for(const auto& a : L.arcs) on_arcs.insert(a.vertices.begin(), a.vertices.end());
+  // The first surface patch's vertex farthest from its border (straight-line distance), as
+  // a missing part's far point is.
+  std::size_t patch = 0;
+  while(L.patches[patch].kind != Layout::SURFACE) ++patch;
+  auto point = [&](Layout::vertex_descriptor v) {
+    const auto& q = L.mesh.point(v);
+    return Eigen::Vector3d(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z()));
+  };
+  std::vector<Eigen::Vector3d> border;
+  for(std::size_t a : L.patches[patch].arcs)
+    for(auto v : L.arcs[a].vertices) border.push_back(point(v));
+  Layout::vertex_descriptor inside;
+  double deepest = 0.;
+  for(auto f : L.patches[patch].faces)
+    for(auto v : vertices_around_face(halfedge(f, L.mesh), L.mesh)) {
+      double d = std::numeric_limits<double>::infinity();
+      for(const auto& b : border) d = std::min(d, (point(v) - b).norm());
+      if(!on_arcs.count(v) && d > deepest) deepest = d, inside = v;
+    }
+  REQUIRE(inside != Layout::vertex_descriptor());
+  const auto out = Decomposition::with_cube_under(L, patch, inside, diagonal);
+  REQUIRE(out);
+  check_layout(m, *out);
+  CHECK(out->cuboids.size() == L.cuboids.size() + 1);
+  auto count = [](const Layout& x, int kind) {
+    return std::count_if(x.patches.begin(), x.patches.end(), [&](const auto& p) { return int(p.kind) == kind; });
+  };
+  CHECK(count(*out, Layout::SURFACE) == count(L, Layout::SURFACE) + 4);
+  CHECK(count(*out, Layout::INTERFACE) == count(L, Layout::INTERFACE) + 1);
+  // The point asked for lies on the new cube's bottom: a surface patch none of whose corners
+  // was a node before.
+  std::set<Point> old_nodes;
+  for(auto n : L.nodes) old_nodes.insert(L.mesh.point(n));
+  std::size_t holding = 0;
+  for(const auto& p : out->patches) {
+    if(p.kind != Layout::SURFACE) continue;
+    bool has = false;
+    for(auto f : p.faces)
+      for(auto v : vertices_around_face(halfedge(f, out->mesh), out->mesh)) has = has || out->mesh.point(v) == L.mesh.point(inside);
+    if(!has) continue;
+    ++holding;
+    for(std::size_t c : p.corners) CHECK_FALSE(old_nodes.count(out->mesh.point(out->nodes[c])));
+  }
+  CHECK(holding == 1);
+  // No cube on a border vertex, nor under a patch that is not on the surface.
+  CHECK_FALSE(Decomposition::with_cube_under(L, patch, L.nodes[L.patches[patch].corners[0]], diagonal));
+  std::size_t interface = 0;
+  while(L.patches[interface].kind == Layout::SURFACE) ++interface;
+  CHECK_FALSE(Decomposition::with_cube_under(L, interface, inside, diagonal));
 }
 
 TEST_CASE("cuboid decomposition is deterministic", "[cuboid]")

@@ -110,6 +110,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
     w.key("grid_attempts").begin_array();
     for(int g : model.grid_attempts) w.value(g);
     w.end_array();
+    w.key("missing_part_cubes").value(model.missing_part_cubes);
     w.key("degree_attempts").begin_array();
     for(int d : model.degree_attempts) w.value(d);
     w.end_array();
@@ -171,7 +172,7 @@ int run_build(const Arguments& args)
                       "--no-untangle", "--no-step-retry"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
                       "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--min-degree", "--relax-sweeps", "--stretch-rounds",
-                      "--sharp-boundary-turn", "--belt-phases", "--relax-arcs", "--cut-pair-trials"});
+                      "--sharp-boundary-turn", "--belt-phases", "--relax-arcs", "--cut-pair-trials", "--missing-part-cubes"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
   if(out.empty()) throw PI::Invalid_input_error("bad_arguments", "build needs -o OUT.xml");
@@ -190,6 +191,7 @@ int run_build(const Arguments& args)
   const int belt_phases = positive_option(a, "--belt-phases", 4, 1, 8);
   const int arc_sweeps = positive_option(a, "--relax-arcs", 0, 0, 100);
   const int pair_trials = positive_option(a, "--cut-pair-trials", PI::default_cut_pair_trials, 1, 1000);
+  const int missing_part_cubes = positive_option(a, "--missing-part-cubes", 2, 0, 16);
   const bool verbose = !a.has("--quiet") && isatty(2);
   auto progress = [&](const std::string& stage) {
     if(verbose) std::cerr << "polycube_iga: " << stage << "...\n";
@@ -206,6 +208,7 @@ int run_build(const Arguments& args)
       .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid).minimum_spline_degree(min_degree)
       .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn).belt_phases(belt_phases)
       .step_retry(!a.has("--no-step-retry")).arc_relaxation_sweeps(arc_sweeps).cut_pair_trials(pair_trials)
+      .missing_part_cubes(missing_part_cubes)
       // An invalid volume is not written without --allow-invalid: no time spent improving it.
       .untangle_invalid_result(a.has("--allow-invalid")),
     progress);
@@ -253,7 +256,7 @@ Register_command build_command("build", {
   "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--max-grid M]\n"
   "                          [--min-grid M] [--min-degree D] [--relax-sweeps S] [--stretch-rounds R]\n"
   "                          [--sharp-boundary-turn D] [--belt-phases K] [--no-step-retry] [--relax-arcs K]\n"
-  "                          [--cut-pair-trials K] [--no-untangle]\n"
+  "                          [--cut-pair-trials K] [--missing-part-cubes K] [--no-untangle]\n"
   "                          [--allow-invalid]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
@@ -293,6 +296,10 @@ Register_command build_command("build", {
   "  --cut-pair-trials K  the pants stage traces the cuts around the K most promising pairs of\n"
   "                    holes at each step and takes the most promising one whose cut is within\n"
   "                    10% of the lightest (default 16; 1: the most promising pair alone)\n"
+  "  --missing-part-cubes K  when the volume misses a part of the shape (a mesh point far\n"
+  "                    from it while all of it is near the mesh: a protrusion the patch's map\n"
+  "                    shrinks), give that patch a cube of its own with its bottom there and\n"
+  "                    build again, up to K times while it helps (default 2; 0: never)\n"
   "  --boundary-layer T  depth of the layer of slabs under the surface, as a fraction of the\n"
   "                    shortest arc at each node (default 0.25; 0: one patch per cuboid)\n"
   "  --no-untangle     keep the constructed inner control points; by default those of patches\n"

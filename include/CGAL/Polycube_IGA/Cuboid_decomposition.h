@@ -55,6 +55,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -452,6 +453,22 @@ public:
     }
   }
 
+  /// The layout with a cube of its own under SURFACE patch `patch` of `L`: the patch becomes
+  /// an interface and the cube is laid out in it as a protrusion's (see
+  /// with_protrusions_extruded()), its bottom a square around `v`, a vertex of `L.mesh` inside
+  /// the patch (not on its border). For a part of the shape that the volume misses
+  /// (build_trivariate_model(), `missing_part_cubes`): the patch's map to the square shrinks
+  /// it, while a bottom of its own gets a grid of its own. `diagonal` is the bounding box's.
+  /// Empty when the cube does not fit (`v` on the border or outside the patch, a border
+  /// the cube's top cannot take).
+  static std::optional<Layout> with_cube_under(const Layout& L, std::size_t patch, V v, double diagonal)
+  {
+    if(patch >= L.patches.size() || L.patches[patch].kind != Layout::SURFACE) return std::nullopt;
+    Layout out = with_protrusions_extruded(L, diagonal, std::make_pair(patch, v));
+    if(out.cuboids.size() != L.cuboids.size() + 1) return std::nullopt;
+    return out;
+  }
+
 private:
   /// The classes with Euler characteristic >= 0, which have no pants (item 3 of the issue).
   static Layout layout_of(const TriangleMesh& tm, const Surface_topology_result<TriangleMesh>& topo, double belt_phase,
@@ -518,7 +535,10 @@ private:
   /// as large as a cube's face on it (at most a fifth of the patch). The operator() runs
   /// this again, up to 8 rounds, while a bottom is still a protrusion (the rest of a long
   /// shaft). The layout is returned unchanged if any of its cubes does not fit.
-  static Layout with_protrusions_extruded(Layout L, double diagonal)
+  /// `requested` (SURFACE patch, mesh vertex inside it): that patch alone gets the cube,
+  /// its bottom around that vertex, whatever the criterion says (with_cube_under()).
+  static Layout with_protrusions_extruded(Layout L, double diagonal,
+                                          std::optional<std::pair<std::size_t, V>> requested = std::nullopt)
   {
     using namespace internal;
     // Without the parent map of the first gluing: glue_pieces() would take the layout's mesh
@@ -546,6 +566,7 @@ private:
     std::vector<Cube> cubes;
     for(std::size_t k = 0; k < surface; ++k) {
       if(num_faces(pieces[k]) != L.patches[k].faces.size()) return L;
+      if(requested && requested->first != k) continue;
       std::vector<V> loop = border_loop(pieces[k]);
       const Mesh_graph<Mesh> g(pieces[k], get(CGAL::vertex_point, pieces[k]));
       std::vector<int> roots;
@@ -553,6 +574,13 @@ private:
       const std::vector<double> d = distances_from<Point>(g, roots);
       const auto far = std::max_element(d.begin(), d.end());
       const double around = loop_arc_length(pieces[k], loop).back();
+      if(requested) {
+        const std::vector<std::size_t> par = vertex_parents(pieces[k]);
+        for(V v : vertices(pieces[k]))
+          if(par[v] == std::size_t(requested->second) && d[v] > 0.)
+            cubes.push_back({k, std::move(loop), around, std::size_t(v), {}, {}, {}});
+        break;
+      }
       // Deeper than 1% of the diagonal: half of what the volume may miss by default.
       if(*far > 0.25 * around && *far > 0.01 * diagonal)
         cubes.push_back({k, std::move(loop), around, std::size_t(far - d.begin()), {}, {}, {}});

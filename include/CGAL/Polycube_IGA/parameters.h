@@ -62,7 +62,8 @@ namespace Polycube_IGA {
   X(minimum_spline_degree_t, minimum_spline_degree)                                 \
   X(belt_phases_t, belt_phases)                                                     \
   X(step_retry_t, step_retry)                                                       \
-  X(arc_relaxation_sweeps_t, arc_relaxation_sweeps)
+  X(arc_relaxation_sweeps_t, arc_relaxation_sweeps)                               \
+  X(missing_part_cubes_t, missing_part_cubes)
 
 namespace internal_np {
 #define CGAL_POLYCUBE_IGA_DECLARE_TAG(TAG, NAME) enum TAG { NAME };

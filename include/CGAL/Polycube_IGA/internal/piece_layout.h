@@ -19,6 +19,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -153,6 +154,21 @@ Piece_graph_embedding<P> embed_piece_graph(CGAL::Surface_mesh<P>& piece,
   if(g.interior_area_fraction > 0.) {
     const double scale = area_balancing_scale(piece, g);
     for(auto& p : g.interior_uv) p = g.interior_center + scale * (p - g.interior_center);
+  }
+  // Around a vertex that the map puts near the polygon's border, the interior nodes would
+  // cross it: they are drawn towards the vertex (strictly inside, as every inner vertex)
+  // until they are inside.
+  if(g.interior_center_vertex) {
+    auto inside = [&](const Eigen::Vector2d& p) {
+      if(!std::isfinite(p.x())) return true; // placed by Tutte's rule below, inside
+      for(std::size_t i = 0; i < loop_uv.size(); ++i) {
+        const Eigen::Vector2d e = loop_uv[(i + 1) % loop_uv.size()] - loop_uv[i], d = p - loop_uv[i];
+        if(!(e.x() * d.y() - e.y() * d.x() > 1e-9 * e.norm())) return false;
+      }
+      return true;
+    };
+    for(int k = 0; k < 40 && !std::all_of(g.interior_uv.begin(), g.interior_uv.end(), inside); ++k)
+      for(auto& p : g.interior_uv) p = g.interior_center + 0.75 * (p - g.interior_center);
   }
   // Tutte's rule for the interior vertices without a position: each the mean of its
   // graph neighbours (a small dense solve).
