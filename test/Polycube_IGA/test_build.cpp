@@ -248,6 +248,9 @@ TEST_CASE("build CLI rejects bad input and bad options without writing", "[build
   r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --degree 2 --min-degree 3");
   CHECK(r.exit_code == 2);
   CHECK(r.err.find("--min-degree") != std::string::npos);
+  r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --missing-part-cubes 17");
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("--missing-part-cubes") != std::string::npos);
   r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --sharp-boundary-turn 200");
   CHECK(r.exit_code == 2);
   CHECK(r.err.find("--sharp-boundary-turn") != std::string::npos);
@@ -782,6 +785,7 @@ TEST_CASE("build CLI writes a certified torus volume without --allow-invalid", "
   CHECK(rep.find("\"valid\":true") != std::string::npos);
   CHECK(rep.find("\"boundary_layer\":true") != std::string::npos);
   CHECK(rep.find("\"degree_attempts\":[3]") != std::string::npos); // valid at once: no lower degree
+  CHECK(rep.find("\"missing_part_cubes\":0") != std::string::npos);  // nor a missing part
   const PI::Multipatch_volume mp = PI::IO::read_gismo_xml(xml);
   // A closed solid with a boundary layer: the cores lie inside, every slab has exactly one
   // side on the surface, so the boundary sides are the slabs' tops.
