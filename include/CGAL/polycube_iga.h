@@ -327,11 +327,13 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
     const std::size_t fewer = internal::uncertified_patches(r), before = internal::uncertified_patches(model.volume);
     return (fewer < before && closer) || (fewer == before && kept > model.maximum_boundary_distance && r.distance.relative < kept);
   };
-  // Another construction of the same layout; one that fails leaves a warning and the kept one.
-  auto attempt = [&](const std::string& name, const Layout_volume_options& o, const std::string& what) {
+  // Another construction (of `layout`, by default the model's); one that fails leaves a
+  // warning and the kept one.
+  auto attempt = [&](const std::string& name, const Layout_volume_options& o, const std::string& what,
+                     const typename Decomposition::Layout* layout = nullptr) {
     Layout_volume_result r;
     try {
-      stage(name, [&] { r = layout_volume(model.layout, o); });
+      stage(name, [&] { r = layout_volume(layout ? *layout : model.layout, o); });
     } catch(const Error& e) {
       model.warnings.push_back(what + " failed: " + e.reason() + ": " + e.what());
     }
@@ -375,14 +377,10 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
       model.warnings.push_back("a cube under " + where + " breaks the layout (" + validation.problems.front() + "): not used");
       break;
     }
-    Layout_volume_result r;
-    try {
-      stage("volume construction, missing part cube", [&] { r = layout_volume(*extruded, volume_options); });
-    } catch(const Error& e) {
-      model.warnings.push_back("the volume with a cube under " + where + " failed: " + e.reason() + ": " + e.what());
-      break;
-    }
-    if(!(r.quality_evaluated && r.distance.relative < d.relative)) {
+    Layout_volume_result r =
+      attempt("volume construction, missing part cube", volume_options, "the volume with a cube under " + where, &*extruded);
+    if(!r.quality_evaluated) break;
+    if(!(r.distance.relative < d.relative)) {
       model.warnings.push_back("a cube under " + where + " was tried and left the boundary " +
                                internal::percent_text(r.distance.relative) + " of the diagonal from the mesh: not used");
       break;

@@ -19,6 +19,9 @@
 #include <algorithm>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 using namespace test_support;
 namespace PI = CGAL::Polycube_IGA;
@@ -233,27 +236,21 @@ TEST_CASE("build CLI rejects bad input and bad options without writing", "[build
   Cli_result r = run_cli("build '" + nan_mesh + "' -o '" + xml + "'");
   CHECK(r.exit_code == 2);
   CHECK(r.err.find("non_finite_coordinates") != std::string::npos);
-  r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --grid 1");
-  CHECK(r.exit_code == 2);
-  CHECK(r.err.find("bad_arguments") != std::string::npos);
-  r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --boundary-layer 0.7");
-  CHECK(r.exit_code == 2);
-  CHECK(r.err.find("--boundary-layer") != std::string::npos);
-  r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --grid 16 --max-grid 8");
-  CHECK(r.exit_code == 2);
-  CHECK(r.err.find("--max-grid") != std::string::npos);
-  r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --grid 16 --min-grid 32");
-  CHECK(r.exit_code == 2);
-  CHECK(r.err.find("--min-grid") != std::string::npos);
-  r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --degree 2 --min-degree 3");
-  CHECK(r.exit_code == 2);
-  CHECK(r.err.find("--min-degree") != std::string::npos);
-  r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --missing-part-cubes 17");
-  CHECK(r.exit_code == 2);
-  CHECK(r.err.find("--missing-part-cubes") != std::string::npos);
-  r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' --sharp-boundary-turn 200");
-  CHECK(r.exit_code == 2);
-  CHECK(r.err.find("--sharp-boundary-turn") != std::string::npos);
+  // Each bad option, and what its message must name.
+  const std::vector<std::pair<std::string, std::string>> bad_options{
+    {"--grid 1", "bad_arguments"},
+    {"--boundary-layer 0.7", "--boundary-layer"},
+    {"--grid 16 --max-grid 8", "--max-grid"},
+    {"--grid 16 --min-grid 32", "--min-grid"},
+    {"--degree 2 --min-degree 3", "--min-degree"},
+    {"--missing-part-cubes 17", "--missing-part-cubes"},
+    {"--sharp-boundary-turn 200", "--sharp-boundary-turn"}};
+  for(const auto& [options, named] : bad_options) {
+    INFO(options);
+    r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' " + options);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find(named) != std::string::npos);
+  }
   r = run_cli("build '" + data("torus.obj") + "'");
   CHECK(r.exit_code == 2);
   CHECK(!exists(xml));

@@ -161,10 +161,8 @@ Piece_graph_embedding<P> embed_piece_graph(CGAL::Surface_mesh<P>& piece,
   if(g.interior_center_vertex) {
     auto inside = [&](const Eigen::Vector2d& p) {
       if(!std::isfinite(p.x())) return true; // placed by Tutte's rule below, inside
-      for(std::size_t i = 0; i < loop_uv.size(); ++i) {
-        const Eigen::Vector2d e = loop_uv[(i + 1) % loop_uv.size()] - loop_uv[i], d = p - loop_uv[i];
-        if(!(e.x() * d.y() - e.y() * d.x() > 1e-9 * e.norm())) return false;
-      }
+      for(std::size_t i = 0; i < loop_uv.size(); ++i)
+        if(uv_orientation(loop_uv[i], loop_uv[(i + 1) % loop_uv.size()], p) != CGAL::LEFT_TURN) return false;
       return true;
     };
     for(int k = 0; k < 40 && !std::all_of(g.interior_uv.begin(), g.interior_uv.end(), inside); ++k)
