@@ -28,13 +28,6 @@ namespace PI = CGAL::Polycube_IGA;
 
 namespace {
 bool exists(const std::string& path) { return std::ifstream(path).good(); }
-std::string slurp(const std::string& path)
-{
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 /// A valid build: every certified det J bound positive, the smallest sampled scaled
 /// Jacobian above `min_scaled`, the boundary within `max_distance` of the bounding-box

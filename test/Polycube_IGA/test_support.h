@@ -62,6 +62,15 @@ inline std::string write_text(const std::string& name, const std::string& text)
   return path;
 }
 
+/// The whole text of a file ("" if it cannot be read).
+inline std::string slurp(const std::string& path)
+{
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
 /// Reads a mesh and requires it to be valid.
 inline Mesh load(const std::string& path)
 {

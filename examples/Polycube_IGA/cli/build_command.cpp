@@ -16,6 +16,7 @@
 #include <CGAL/Polycube_IGA/IO/layout_json.h>
 #include <CGAL/Polycube_IGA/IO/layout_vtk.h>
 #include <CGAL/Polycube_IGA/IO/vtu.h>
+#include <CGAL/Polycube_IGA/Small_handle_removal.h>
 #include <CGAL/Polycube_IGA/internal/atomic_file.h>
 #include <CGAL/Polycube_IGA/internal/json_writer.h>
 #include <CGAL/polycube_iga.h>
@@ -23,6 +24,7 @@
 #include <array>
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <iostream>
 #include <unistd.h>
 
@@ -55,8 +57,18 @@ double fraction_option(const Parsed_arguments& a, const std::string& name, doubl
   return v;
 }
 
+/// What closing small handles did before the build (Small_handle_removal), and the volume's
+/// distance to the mesh as read (the build measures it to the closed one).
+struct Handle_closing
+{
+  PI::Small_handle_removal_result result;
+  std::optional<PI::Boundary_distance> to_input;
+  bool too_far(double max_distance) const { return to_input && to_input->relative > max_distance; }
+};
+
 template <class Model>
-void write_report(const std::string& path, const Input_mesh& in, const Model& model, double read_seconds, bool written)
+void write_report(const std::string& path, const Input_mesh& in, const Model& model, const Handle_closing& closing,
+                  double read_seconds, bool written)
 {
   PI::internal::write_file_atomically(path, [&](std::ostream& os) {
     const auto& L = model.layout;
@@ -66,6 +78,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("input_vertices", num_vertices(in.mesh))
       .member("input_faces", num_faces(in.mesh))
       .member("genus", L.genus)
+      .member("input_genus", closing.result.genus_before)
       .member("boundary_loops", L.boundary_loops)
       .member("layout_class", PI::layout_class_name(L.layout_class))
       .member("pants", L.number_of_pants)
@@ -96,7 +109,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("arcs_relaxed", model.arc_relaxation.arcs_moved)
       .member("relaxation_sweeps", V.relaxation.sweeps)
       .member("relaxation_last_move", V.relaxation.last_move)
-      .member("valid", model.is_valid())
+      .member("valid", model.is_valid() && !closing.too_far(model.maximum_boundary_distance))
       .member("volume_written", written);
     const PI::internal::Layout_corner_statistics corners = PI::internal::layout_corner_statistics(L);
     w.key("layout_corners").begin_object()
@@ -115,7 +128,10 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
     for(int d : model.degree_attempts) w.value(d);
     w.end_array();
     w.key("invalidity_reasons").begin_array();
-    for(const auto& r : model.invalidity_reasons()) w.value(r);
+    std::vector<std::string> reasons = model.invalidity_reasons();
+    if(closing.too_far(model.maximum_boundary_distance) && std::find(reasons.begin(), reasons.end(), "boundary_distance") == reasons.end())
+      reasons.push_back("boundary_distance");
+    for(const auto& r : reasons) w.value(r);
     w.end_array();
     w.key("patch_quality").begin_array();
     for(std::size_t c = 0; c < V.quality.sampled.size(); ++c) {
@@ -146,6 +162,19 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
     point("farthest_mesh_point", V.distance.farthest_mesh_point);
     point("farthest_spline_point", V.distance.farthest_spline_point);
     w.end_object();
+    w.key("small_handles_closed").begin_array();
+    for(const auto& h : closing.result.closed) {
+      w.begin_object().member("loop", h.loop_kind).member("length", h.length).member("relative_to_bbox_diagonal", h.relative)
+        .member("loop_edges", h.loop_edges);
+      point("near", h.point);
+      w.end_object();
+    }
+    w.end_array();
+    if(closing.to_input)
+      w.key("hausdorff_to_input").begin_object()
+        .member("absolute", closing.to_input->hausdorff)
+        .member("relative_to_bbox_diagonal", closing.to_input->relative)
+        .end_object();
     w.key("folded_boundary_sides").begin_array();
     for(const auto& f : V.distance.folded_sides)
       w.begin_object().member("patch", f.side.patch).member("side", f.side.side).member("samples", f.samples).end_object();
@@ -172,7 +201,8 @@ int run_build(const Arguments& args)
                       "--no-untangle", "--no-step-retry"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
                       "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--min-degree", "--relax-sweeps", "--stretch-rounds",
-                      "--sharp-boundary-turn", "--belt-phases", "--relax-arcs", "--cut-pair-trials", "--missing-part-cubes"});
+                      "--sharp-boundary-turn", "--belt-phases", "--relax-arcs", "--cut-pair-trials", "--missing-part-cubes",
+                      "--small-handle-length"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
   if(out.empty()) throw PI::Invalid_input_error("bad_arguments", "build needs -o OUT.xml");
@@ -192,6 +222,7 @@ int run_build(const Arguments& args)
   const int arc_sweeps = positive_option(a, "--relax-arcs", 0, 0, 100);
   const int pair_trials = positive_option(a, "--cut-pair-trials", PI::default_cut_pair_trials, 1, 1000);
   const int missing_part_cubes = positive_option(a, "--missing-part-cubes", 2, 0, 16);
+  const double small_handle_length = fraction_option(a, "--small-handle-length", 0., 0., 0.5);
   const bool verbose = !a.has("--quiet") && isatty(2);
   auto progress = [&](const std::string& stage) {
     if(verbose) std::cerr << "polycube_iga: " << stage << "...\n";
@@ -202,8 +233,16 @@ int run_build(const Arguments& args)
   Input_mesh in = read_input_mesh(a.positional()[0], a);
   in.report.require_valid();
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  // Handles a few triangles across (topological noise of a scan) are closed first: the
+  // volume could not resolve them (Small_handle_removal.h).
+  Handle_closing closing;
+  Mesh mesh = in.mesh;
+  if(small_handle_length > 0.) {
+    progress("closing small handles");
+    closing.result = PI::Small_handle_removal<Mesh::Point>()(mesh, PI::parameters::small_handle_length(small_handle_length));
+  }
   const auto model = PI::build_trivariate_model(
-    in.mesh, PI::parameters::grid_resolution(grid).spline_degree(degree).cut_criterion(criterion).boundary_layer(layer)
+    mesh, PI::parameters::grid_resolution(grid).spline_degree(degree).cut_criterion(criterion).boundary_layer(layer)
       .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
       .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid).minimum_spline_degree(min_degree)
       .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn).belt_phases(belt_phases)
@@ -213,13 +252,24 @@ int run_build(const Arguments& args)
       .untangle_invalid_result(a.has("--allow-invalid")),
     progress);
 
-  const bool write_volume = model.is_valid() || a.has("--allow-invalid");
+  // The volume must also be near the mesh as read, not only near the one with handles closed.
+  if(!closing.result.closed.empty() && model.volume.quality_evaluated)
+    closing.to_input = PI::boundary_hausdorff_distance(model.volume.volume, in.mesh);
+  std::vector<std::string> reasons = model.invalidity_reasons();
+  const std::string too_far_from_input =
+    closing.too_far(max_distance)
+      ? "boundary distance to the mesh as read (small handles open) is " + std::to_string(100. * closing.to_input->relative) +
+          "% of the diagonal, over " + std::to_string(100. * max_distance) + "%"
+      : "";
+  if(!too_far_from_input.empty() && std::find(reasons.begin(), reasons.end(), "boundary_distance") == reasons.end())
+    reasons.push_back("boundary_distance");
+  const bool valid = reasons.empty();
+  const bool write_volume = valid || a.has("--allow-invalid");
   if(a.has("--layout-vtu")) PI::IO::write_layout_vtu(a.get("--layout-vtu"), model.layout);
   if(a.has("--layout-json")) PI::IO::write_layout_json(a.get("--layout-json"), model.layout);
-  if(a.has("--report")) write_report(a.get("--report"), in, model, read_seconds, write_volume);
-  if(!model.is_valid()) {
+  if(a.has("--report")) write_report(a.get("--report"), in, model, closing, read_seconds, write_volume);
+  if(!valid) {
     // The first reason is the error's; the message says, for each, what is wrong and where.
-    const std::vector<std::string> reasons = model.invalidity_reasons();
     const std::string reason = reasons.front();
     std::string all;
     for(const auto& r : reasons) {
@@ -227,6 +277,7 @@ int run_build(const Arguments& args)
       std::string detail;
       for(const auto& w : model.warnings)
         if(w.find(topic) != std::string::npos) { detail = w; break; }
+      if(detail.empty() && r == "boundary_distance") detail = too_far_from_input;
       all += (all.empty() ? "" : "; ") + r + (detail.empty() ? "" : ": " + detail);
     }
     if(!write_volume)
@@ -256,7 +307,8 @@ Register_command build_command("build", {
   "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--max-grid M]\n"
   "                          [--min-grid M] [--min-degree D] [--relax-sweeps S] [--stretch-rounds R]\n"
   "                          [--sharp-boundary-turn D] [--belt-phases K] [--no-step-retry] [--relax-arcs K]\n"
-  "                          [--cut-pair-trials K] [--missing-part-cubes K] [--no-untangle]\n"
+  "                          [--cut-pair-trials K] [--missing-part-cubes K] [--small-handle-length F]\n"
+  "                          [--no-untangle]\n"
   "                          [--allow-invalid]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
@@ -300,6 +352,10 @@ Register_command build_command("build", {
   "                    from it while all of it is near the mesh: a protrusion the patch's map\n"
   "                    shrinks), give that patch a cube of its own with its bottom there and\n"
   "                    build again, up to K times while it helps (default 2; 0: never)\n"
+  "  --small-handle-length F  close first every handle whose shortest handle or tunnel loop is\n"
+  "                    shorter than F times the bounding-box diagonal (topological noise of a\n"
+  "                    scan: no grid resolves it); the volume must still be within --max-distance\n"
+  "                    of the mesh as read (default 0: keep every handle; e.g. 0.01)\n"
   "  --boundary-layer T  depth of the layer of slabs under the surface, as a fraction of the\n"
   "                    shortest arc at each node (default 0.25; 0: one patch per cuboid)\n"
   "  --no-untangle     keep the constructed inner control points; by default those of patches\n"

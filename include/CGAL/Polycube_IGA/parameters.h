@@ -30,6 +30,7 @@ namespace Polycube_IGA {
   X(number_of_roots_t, number_of_roots)                                             \
   X(compute_tunnel_loops_t, compute_tunnel_loops)                                   \
   X(maximum_refinements_t, maximum_refinements)                                     \
+  X(small_handle_length_t, small_handle_length)                                     \
   /* pants decomposition */                                                         \
   X(cut_criterion_t, cut_criterion)                                                 \
   X(symmetry_plane_t, symmetry_plane)                                               \
