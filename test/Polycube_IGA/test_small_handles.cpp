@@ -130,6 +130,9 @@ TEST_CASE("build CLI --small-handle-length closes femur.off's handles and report
   CHECK(rep2.find("\"genus\":2") != std::string::npos);
   CHECK(rep2.find("\"small_handles_closed\":[]") != std::string::npos);
   CHECK(rep2.find("\"hausdorff_to_input\"") == std::string::npos);
+  // The volume is invalid and the handles are tiny: the report says what would help.
+  CHECK(rep2.find("\"valid\":false") != std::string::npos);
+  CHECK(rep2.find("likely topological noise that no grid resolves; --small-handle-length 0.01 closes it") != std::string::npos);
   // Out of range: refused before any work.
   CHECK(run_cli("build '" + data("femur.off") + "' -o '" + xml + "' --small-handle-length 0.7").exit_code == 2);
 }

@@ -63,6 +63,8 @@ struct Handle_closing
 {
   PI::Small_handle_removal_result result;
   std::optional<PI::Boundary_distance> to_input;
+  /// The stage's own warnings, and a hint when a kept handle is that small and the volume invalid.
+  std::vector<std::string> warnings;
   bool too_far(double max_distance) const { return to_input && to_input->relative > max_distance; }
 };
 
@@ -189,6 +191,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("quality", V.quality_seconds);
     w.end_object();
     w.key("warnings").begin_array();
+    for(const auto& s : closing.warnings) w.value(s);
     for(const auto& s : model.warnings) w.value(s);
     w.end_array().end_object();
     os << "\n";
@@ -240,6 +243,7 @@ int run_build(const Arguments& args)
   if(small_handle_length > 0.) {
     progress("closing small handles");
     closing.result = PI::Small_handle_removal<Mesh::Point>()(mesh, PI::parameters::small_handle_length(small_handle_length));
+    closing.warnings = closing.result.warnings;
   }
   const auto model = PI::build_trivariate_model(
     mesh, PI::parameters::grid_resolution(grid).spline_degree(degree).cut_criterion(criterion).boundary_layer(layer)
@@ -258,12 +262,25 @@ int run_build(const Arguments& args)
   std::vector<std::string> reasons = model.invalidity_reasons();
   const std::string too_far_from_input =
     closing.too_far(max_distance)
-      ? "boundary distance to the mesh as read (small handles open) is " + std::to_string(100. * closing.to_input->relative) +
-          "% of the diagonal, over " + std::to_string(100. * max_distance) + "%"
+      ? "boundary distance to the mesh as read (small handles open) is " + PI::internal::percent_text(closing.to_input->relative) +
+          " of the diagonal, over " + PI::internal::percent_text(max_distance)
       : "";
   if(!too_far_from_input.empty() && std::find(reasons.begin(), reasons.end(), "boundary_distance") == reasons.end())
     reasons.push_back("boundary_distance");
   const bool valid = reasons.empty();
+  if(!valid && !(small_handle_length > 0.) && model.layout.genus > 0) {
+    // Handles a few triangles across are a common reason for an invalid volume; say so.
+    const auto topo = PI::Surface_topology<Mesh>()(in.mesh);
+    const CGAL::Bbox_3 box = CGAL::Polygon_mesh_processing::bbox(in.mesh);
+    const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) + CGAL::square(box.zmax() - box.zmin()));
+    for(const auto* loops : {&topo.handle_loops, &topo.tunnel_loops})
+      for(const auto& l : *loops)
+        if(l.length < 0.01 * diagonal)
+          closing.warnings.push_back("a handle near " + PI::internal::triple_text(l.points[0][0], l.points[0][1], l.points[0][2]) +
+                                     " has a " + (loops == &topo.handle_loops ? "handle" : "tunnel") + " loop of " +
+                                     std::to_string(l.vertices.size()) + " edges, " + PI::internal::percent_text(l.length / diagonal) +
+                                     " of the diagonal: likely topological noise that no grid resolves; --small-handle-length 0.01 closes it");
+  }
   const bool write_volume = valid || a.has("--allow-invalid");
   if(a.has("--layout-vtu")) PI::IO::write_layout_vtu(a.get("--layout-vtu"), model.layout);
   if(a.has("--layout-json")) PI::IO::write_layout_json(a.get("--layout-json"), model.layout);
