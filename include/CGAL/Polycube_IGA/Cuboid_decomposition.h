@@ -572,7 +572,6 @@ private:
       std::vector<int> roots;
       for(V v : loop) roots.push_back(int(v));
       const std::vector<double> d = distances_from<Point>(g, roots);
-      const auto far = std::max_element(d.begin(), d.end());
       const double around = loop_arc_length(pieces[k], loop).back();
       if(requested) {
         const std::vector<std::size_t> par = vertex_parents(pieces[k]);
@@ -582,6 +581,7 @@ private:
         break;
       }
       // Deeper than 1% of the diagonal: half of what the volume may miss by default.
+      const auto far = std::max_element(d.begin(), d.end());
       if(*far > 0.25 * around && *far > 0.01 * diagonal)
         cubes.push_back({k, std::move(loop), around, std::size_t(far - d.begin()), {}, {}, {}});
     }
