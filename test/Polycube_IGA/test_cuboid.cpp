@@ -11,6 +11,7 @@
 #include <CGAL/Polycube_IGA/Cuboid_decomposition.h>
 #include <CGAL/Polycube_IGA/Layout_arc_relaxation.h>
 #include <CGAL/Polycube_IGA/Pants_decomposition.h>
+#include <CGAL/Polycube_IGA/internal/bbox_diagonal.h>
 #include <CGAL/Polycube_IGA/internal/feature_curves.h>
 #include <CGAL/Polycube_IGA/internal/loop_corners.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
@@ -483,8 +484,7 @@ TEST_CASE("a pants layout gives a protrusion cubes of its own: femur.off's shaft
     const auto& q = L.mesh.point(v);
     return Eigen::Vector3d(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z()));
   };
-  const auto box = CGAL::Polygon_mesh_processing::bbox(m);
-  const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) + CGAL::square(box.zmax() - box.zmin()));
+  const double diagonal = PI::internal::mesh_bbox_diagonal(m);
   double worst = 0.;
   for(const auto& p : L.patches) {
     if(p.kind != Layout::SURFACE) continue;
@@ -517,8 +517,7 @@ TEST_CASE("with_cube_under gives a layout patch a cube of its own around a verte
   using Decomposition = PI::Cuboid_decomposition<Mesh>;
   const Mesh m = load(data("eight.off"));
   const Layout L = decompose(m);
-  const auto box = CGAL::Polygon_mesh_processing::bbox(m);
-  const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) + CGAL::square(box.zmax() - box.zmin()));
+  const double diagonal = PI::internal::mesh_bbox_diagonal(m);
   std::set<Layout::vertex_descriptor> on_arcs;
   for(const auto& a : L.arcs) on_arcs.insert(a.vertices.begin(), a.vertices.end());
   // The first surface patch's vertex farthest from its border (straight-line distance), as

@@ -9,6 +9,7 @@
 
 #include <CGAL/Polycube_IGA/Small_handle_removal.h>
 #include <CGAL/Polycube_IGA/Surface_topology.h>
+#include <CGAL/Polycube_IGA/internal/bbox_diagonal.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -22,12 +23,6 @@ namespace PI = CGAL::Polycube_IGA;
 namespace PIP = CGAL::Polycube_IGA::parameters;
 
 namespace {
-
-double diagonal_of(const Mesh& m)
-{
-  const CGAL::Bbox_3 b = CGAL::Polygon_mesh_processing::bbox(m);
-  return std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) + CGAL::square(b.zmax() - b.zmin()));
-}
 
 /// The largest distance from a vertex of `a` to the surface `b`.
 double farthest_vertex(const Mesh& a, const Mesh& b)
@@ -62,7 +57,7 @@ TEST_CASE("small handles: femur.off's two handles a few triangles across are clo
   CHECK(topo.genus == 0);
   CHECK(topo.number_of_boundary_loops() == 0);
   CHECK_FALSE(CGAL::Polygon_mesh_processing::does_self_intersect(m));
-  const double diagonal = diagonal_of(input);
+  const double diagonal = PI::internal::mesh_bbox_diagonal(input);
   CHECK(farthest_vertex(m, input) < 0.01 * diagonal);
   CHECK(farthest_vertex(input, m) < 0.01 * diagonal);
   // Only the neighbourhoods of the handles changed.

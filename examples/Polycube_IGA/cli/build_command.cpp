@@ -271,8 +271,7 @@ int run_build(const Arguments& args)
   if(!valid && !(small_handle_length > 0.) && model.layout.genus > 0) {
     // Handles a few triangles across are a common reason for an invalid volume; say so.
     const auto topo = PI::Surface_topology<Mesh>()(in.mesh);
-    const CGAL::Bbox_3 box = CGAL::Polygon_mesh_processing::bbox(in.mesh);
-    const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) + CGAL::square(box.zmax() - box.zmin()));
+    const double diagonal = PI::internal::mesh_bbox_diagonal(in.mesh);
     for(const auto* loops : {&topo.handle_loops, &topo.tunnel_loops})
       for(const auto& l : *loops)
         if(l.length < 0.01 * diagonal)

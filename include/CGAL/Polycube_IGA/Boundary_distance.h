@@ -15,6 +15,7 @@
 #define CGAL_POLYCUBE_IGA_BOUNDARY_DISTANCE_H
 
 #include <CGAL/Polycube_IGA/Multipatch_volume.h>
+#include <CGAL/Polycube_IGA/internal/bbox_diagonal.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -83,9 +84,7 @@ Boundary_distance boundary_hausdorff_distance(const Multipatch_volume& mp, const
   }
   Boundary_distance r;
   r.boundary_sides = sides.size();
-  const CGAL::Bbox_3 bb = CGAL::Polygon_mesh_processing::bbox(mesh);
-  r.mesh_bbox_diagonal = std::sqrt(CGAL::square(bb.xmax() - bb.xmin()) + CGAL::square(bb.ymax() - bb.ymin()) +
-                                   CGAL::square(bb.zmax() - bb.zmin()));
+  r.mesh_bbox_diagonal = internal::mesh_bbox_diagonal(mesh);
   if(sides.empty()) throw Invalid_input_error("no_boundary", "the multipatch volume has no boundary side");
 
   // Sample and triangulate the boundary sides.

@@ -34,6 +34,7 @@
 #include <CGAL/Polycube_IGA/Polycube_layout.h>
 #include <CGAL/Polycube_IGA/Surface_topology.h>
 #include <CGAL/Polycube_IGA/parameters.h>
+#include <CGAL/Polycube_IGA/internal/bbox_diagonal.h>
 #include <CGAL/Polycube_IGA/internal/feature_curves.h>
 #include <CGAL/Polycube_IGA/internal/layout_assembly.h>
 #include <CGAL/Polycube_IGA/internal/loop_corners.h>
@@ -422,8 +423,7 @@ public:
               .criterion_strength(option(np, internal_np::criterion_strength, 1.0))
               .cut_pair_trials(option(np, internal_np::cut_pair_trials, default_cut_pair_trials)));
     // Refinement keeps the shape, so the bounding box is the input's.
-    const CGAL::Bbox_3 box = CGAL::Polygon_mesh_processing::bbox(tm);
-    const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) + CGAL::square(box.zmax() - box.zmin()));
+    const double diagonal = internal::mesh_bbox_diagonal(tm);
     std::shared_ptr<TriangleMesh> refined;
     for(int attempt = 0;; ++attempt) {
       const TriangleMesh& mesh = refined ? *refined : tm;

@@ -44,6 +44,7 @@
 #include <CGAL/Polycube_IGA/Errors.h>
 #include <CGAL/Polycube_IGA/Patch_sampling.h>
 #include <CGAL/Polycube_IGA/Polycube_layout.h>
+#include <CGAL/Polycube_IGA/internal/bbox_diagonal.h>
 #include <CGAL/Polycube_IGA/internal/cuboid_frames.h>
 #include <CGAL/Polycube_IGA/internal/triangle_projection.h>
 
@@ -138,8 +139,7 @@ public:
     : mesh_(mesh), tree_(faces(mesh).first, faces(mesh).second, mesh)
   {
     if(faces(mesh).empty()) return;
-    const CGAL::Bbox_3 b = tree_.bbox();
-    offset_ = 1e-7 * std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) + CGAL::square(b.zmax() - b.zmin()));
+    offset_ = 1e-7 * internal::bbox_diagonal(tree_.bbox());
     tree_.accelerate_distance_queries();
     if(!closest_points) return;
     // A copy whose face k is the k-th face of `mesh` (its normal is normals_[k]).

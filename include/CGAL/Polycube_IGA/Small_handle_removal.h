@@ -19,6 +19,7 @@
 #include <CGAL/Polycube_IGA/Errors.h>
 #include <CGAL/Polycube_IGA/Surface_topology.h>
 #include <CGAL/Polycube_IGA/parameters.h>
+#include <CGAL/Polycube_IGA/internal/bbox_diagonal.h>
 #include <CGAL/Polycube_IGA/internal/mesh_graph.h>
 #include <CGAL/Polycube_IGA/internal/shortest_path_tree.h>
 
@@ -89,9 +90,7 @@ public:
   {
     const double fraction = double(option(np, internal_np::small_handle_length, 0.01));
     if(!(fraction >= 0. && fraction < 1.)) throw Invalid_input_error("invalid_parameter", "small_handle_length must be in [0, 1)");
-    const CGAL::Bbox_3 box = CGAL::Polygon_mesh_processing::bbox(tm);
-    const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
-                                      CGAL::square(box.zmax() - box.zmin()));
+    const double diagonal = internal::mesh_bbox_diagonal(tm);
     Small_handle_removal_result r;
     for(bool first = true;; first = false) {
       const Surface_topology_result<Mesh> topo = Surface_topology<Mesh>()(tm);
