@@ -68,9 +68,10 @@ struct Handle_closing
   bool too_far(double max_distance) const { return to_input && to_input->relative > max_distance; }
 };
 
+/// `reasons`: why the volume is not valid (the model's, and the distance to the mesh as read).
 template <class Model>
 void write_report(const std::string& path, const Input_mesh& in, const Model& model, const Handle_closing& closing,
-                  double read_seconds, bool written)
+                  const std::vector<std::string>& reasons, double read_seconds, bool written)
 {
   PI::internal::write_file_atomically(path, [&](std::ostream& os) {
     const auto& L = model.layout;
@@ -111,7 +112,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("arcs_relaxed", model.arc_relaxation.arcs_moved)
       .member("relaxation_sweeps", V.relaxation.sweeps)
       .member("relaxation_last_move", V.relaxation.last_move)
-      .member("valid", model.is_valid() && !closing.too_far(model.maximum_boundary_distance))
+      .member("valid", reasons.empty())
       .member("volume_written", written);
     const PI::internal::Layout_corner_statistics corners = PI::internal::layout_corner_statistics(L);
     w.key("layout_corners").begin_object()
@@ -130,9 +131,6 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
     for(int d : model.degree_attempts) w.value(d);
     w.end_array();
     w.key("invalidity_reasons").begin_array();
-    std::vector<std::string> reasons = model.invalidity_reasons();
-    if(closing.too_far(model.maximum_boundary_distance) && std::find(reasons.begin(), reasons.end(), "boundary_distance") == reasons.end())
-      reasons.push_back("boundary_distance");
     for(const auto& r : reasons) w.value(r);
     w.end_array();
     w.key("patch_quality").begin_array();
@@ -270,20 +268,21 @@ int run_build(const Arguments& args)
   const bool valid = reasons.empty();
   if(!valid && !(small_handle_length > 0.) && model.layout.genus > 0) {
     // Handles a few triangles across are a common reason for an invalid volume; say so.
+    using Closing = PI::Small_handle_removal<Mesh::Point>;
     const auto topo = PI::Surface_topology<Mesh>()(in.mesh);
     const double diagonal = PI::internal::mesh_bbox_diagonal(in.mesh);
-    for(const auto* loops : {&topo.handle_loops, &topo.tunnel_loops})
-      for(const auto& l : *loops)
-        if(l.length < 0.01 * diagonal)
-          closing.warnings.push_back("a handle near " + PI::internal::triple_text(l.points[0][0], l.points[0][1], l.points[0][2]) +
-                                     " has a " + (loops == &topo.handle_loops ? "handle" : "tunnel") + " loop of " +
-                                     std::to_string(l.vertices.size()) + " edges, " + PI::internal::percent_text(l.length / diagonal) +
-                                     " of the diagonal: likely topological noise that no grid resolves; --small-handle-length 0.01 closes it");
+    for(const auto& s : Closing::small_loops(topo, 0.01 * diagonal)) {
+      const auto& l = *s.loop;
+      closing.warnings.push_back("a handle near " + PI::internal::triple_text(l.points[0][0], l.points[0][1], l.points[0][2]) +
+                                 " has a " + s.kind + " loop of " + std::to_string(l.vertices.size()) + " edges, " +
+                                 PI::internal::percent_text(l.length / diagonal) +
+                                 " of the diagonal: likely topological noise that no grid resolves; --small-handle-length 0.01 closes it");
+    }
   }
   const bool write_volume = valid || a.has("--allow-invalid");
   if(a.has("--layout-vtu")) PI::IO::write_layout_vtu(a.get("--layout-vtu"), model.layout);
   if(a.has("--layout-json")) PI::IO::write_layout_json(a.get("--layout-json"), model.layout);
-  if(a.has("--report")) write_report(a.get("--report"), in, model, closing, read_seconds, write_volume);
+  if(a.has("--report")) write_report(a.get("--report"), in, model, closing, reasons, read_seconds, write_volume);
   if(!valid) {
     // The first reason is the error's; the message says, for each, what is wrong and where.
     const std::string reason = reasons.front();

@@ -33,6 +33,7 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <iomanip>
@@ -98,15 +99,13 @@ public:
       r.genus_after = topo.genus;
       if(topo.genus == 0 || !(fraction > 0.)) break;
       // The shortest loop around any handle: a thin handle's handle loop, a small hole's tunnel loop.
-      const Surface_loop<Mesh>* shortest = nullptr;
-      std::string kind;
-      for(const auto* loops : {&topo.handle_loops, &topo.tunnel_loops})
-        for(const auto& l : *loops)
-          if(!shortest || l.length < shortest->length) {
-            shortest = &l;
-            kind = loops == &topo.handle_loops ? "handle" : "tunnel";
-          }
-      if(!shortest || !(shortest->length < fraction * diagonal)) break;
+      const std::vector<Small_loop> small = small_loops(topo, fraction * diagonal);
+      if(small.empty()) break;
+      const Small_loop& first_small = *std::min_element(small.begin(), small.end(), [](const Small_loop& a, const Small_loop& b) {
+        return a.loop->length < b.loop->length;
+      });
+      const Surface_loop<Mesh>* shortest = first_small.loop;
+      const std::string kind = first_small.kind;
       std::optional<Mesh> closed = closed_along(topo.loop_mesh(tm), *shortest, topo.genus, topo.number_of_boundary_loops());
       const Closed_handle h{kind, shortest->length, shortest->length / diagonal, shortest->vertices.size(), shortest->points.front()};
       if(!closed) {
@@ -121,6 +120,25 @@ public:
       r.closed.push_back(h);
     }
     return r;
+  }
+
+  /// A handle or tunnel loop of a topology, with its kind ("handle" or "tunnel").
+  struct Small_loop
+  {
+    const char* kind;
+    const Surface_loop<Mesh>* loop;
+  };
+
+  /// The handle and tunnel loops of `topo` shorter than `limit`, handle loops first: what the
+  /// operator() closes (the shortest first), and what a caller can name when it closes nothing.
+  static std::vector<Small_loop> small_loops(const Surface_topology_result<Mesh>& topo, double limit)
+  {
+    std::vector<Small_loop> out;
+    for(const auto& l : topo.handle_loops)
+      if(l.length < limit) out.push_back({"handle", &l});
+    for(const auto& l : topo.tunnel_loops)
+      if(l.length < limit) out.push_back({"tunnel", &l});
+    return out;
   }
 
 private:
@@ -175,12 +193,12 @@ private:
       m.remove_property_map(fcc);
       std::vector<typename Mesh::Halfedge_index> pinched;
       PMP::non_manifold_vertices(m, std::back_inserter(pinched));
-      const std::size_t opened = border_count(m);
+      std::vector<typename Mesh::Halfedge_index> cycles;
+      PMP::extract_boundary_cycles(m, std::back_inserter(cycles));
+      const std::size_t opened = cycles.size();
       if(pieces != 1 || !pinched.empty() || opened < borders + 1 || opened > borders + 2 || genus_of(m, opened) != genus - 1) continue;
       // The new holes are the borders through vertices that lost a face; the input's own
       // boundary loops lie elsewhere (a radius reaching one changes the counts).
-      std::vector<typename Mesh::Halfedge_index> cycles;
-      PMP::extract_boundary_cycles(m, std::back_inserter(cycles));
       bool filled = true;
       std::size_t holes = 0;
       for(auto h : cycles) {
