@@ -191,6 +191,7 @@ TEST_CASE("build CLI writes nothing invalid and always reports", "[build][cli]")
   const std::string rep = slurp(report);
   REQUIRE(exists(report));
   CHECK(rep.find("\"genus\":2") != std::string::npos);
+  CHECK(rep.find("\"input_genus\":2") != std::string::npos);  // no handle closed: the mesh read is the mesh built
   CHECK(rep.find("\"cuboids\":8") != std::string::npos);
   // eight.off's layout: 30 surface patches (120 corners), the same figures as the library's.
   CHECK(rep.find("\"layout_corners\":{\"corners\":120,") != std::string::npos);

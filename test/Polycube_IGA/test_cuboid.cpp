@@ -10,6 +10,7 @@
 
 #include <CGAL/Polycube_IGA/Cuboid_decomposition.h>
 #include <CGAL/Polycube_IGA/Layout_arc_relaxation.h>
+#include <CGAL/Polycube_IGA/Layout_node_relocation.h>
 #include <CGAL/Polycube_IGA/Pants_decomposition.h>
 #include <CGAL/Polycube_IGA/internal/bbox_diagonal.h>
 #include <CGAL/Polycube_IGA/internal/feature_curves.h>
@@ -677,6 +678,67 @@ TEST_CASE("arc relaxation leaves a box laid out on its own right-angled edges as
   // A negative number of sweeps is a named error, not a silent no-op.
   try {
     PI::relax_layout_arcs(L, -1);
+    FAIL("negative sweeps accepted");
+  } catch(const PI::Error& e) {
+    CHECK(e.reason() == "invalid_parameter");
+  }
+}
+
+TEST_CASE("node relocation moves a CAD part's worst nodes and keeps its layout", "[cuboid][nodes]")
+{
+  const Mesh m = load(data("joint.off"));
+  const Layout L0 = decompose(m);
+  Layout L = L0;
+  const PI::Node_relocation_result r = PI::relocate_layout_nodes(L, 2);
+  check_layout(m, L);
+  const auto before = PI::internal::layout_corner_statistics(L0), after = PI::internal::layout_corner_statistics(L);
+  INFO("mean deviation " << before.mean_deviation << " -> " << after.mean_deviation << ", slivers " << before.slivers << " -> "
+                         << after.slivers << ", reflex " << before.reflex << " -> " << after.reflex);
+  CHECK(r.nodes_moved > 0);
+  CHECK(r.squared_deviation_after < r.squared_deviation_before);
+  CHECK(after.mean_deviation < before.mean_deviation - 10.); // 52 -> 31 degrees
+  CHECK(after.slivers < before.slivers);
+  CHECK(after.reflex < before.reflex);
+  // Cuboids, patch corners and arc ends keep their indices; a moved node is still a point
+  // of the surface (a vertex of the refined mesh, which only splits edges), never one on the
+  // border; the others stay where they were.
+  REQUIRE(L.nodes.size() == L0.nodes.size());
+  std::size_t moved = 0;
+  for(std::size_t n = 0; n < L.nodes.size(); ++n)
+    if(L.mesh.point(L.nodes[n]) != L0.mesh.point(L0.nodes[n])) {
+      ++moved;
+      CHECK_FALSE(bool(is_border(L.nodes[n], L.mesh)));
+    }
+  CHECK(moved > 0);
+  CHECK(moved <= r.nodes_moved);
+  for(std::size_t p = 0; p < L.patches.size(); ++p) CHECK(L.patches[p].corners == L0.patches[p].corners);
+  for(std::size_t c = 0; c < L.cuboids.size(); ++c) CHECK(L.cuboids[c].nodes == L0.cuboids[c].nodes);
+  for(const auto& a : L.arcs) {
+    CHECK(a.vertices.front() == L.nodes[a.nodes[0]]);
+    CHECK(a.vertices.back() == L.nodes[a.nodes[1]]);
+  }
+  // Deterministic.
+  Layout again = L0;
+  PI::relocate_layout_nodes(again, 2);
+  bool same = num_vertices(again.mesh) == num_vertices(L.mesh) && again.nodes == L.nodes;
+  for(std::size_t a = 0; same && a < L.arcs.size(); ++a) same = again.arcs[a].vertices == L.arcs[a].vertices;
+  for(std::size_t p = 0; same && p < L.patches.size(); ++p) same = again.patches[p].faces == L.patches[p].faces;
+  CHECK(same);
+}
+
+TEST_CASE("node relocation leaves a box laid out on its own corners as it is", "[cuboid][nodes]")
+{
+  const Mesh m = load(data("cube-meshed.off"));
+  Layout L = decompose(m);
+  const Layout L0 = L;
+  const PI::Node_relocation_result r = PI::relocate_layout_nodes(L, 3);
+  CHECK(r.nodes_moved == 0);
+  CHECK(r.sweeps == 1);
+  CHECK(num_vertices(L.mesh) == num_vertices(L0.mesh)); // not refined either
+  CHECK(L.nodes == L0.nodes);
+  check_layout(m, L);
+  try {
+    PI::relocate_layout_nodes(L, -1);
     FAIL("negative sweeps accepted");
   } catch(const PI::Error& e) {
     CHECK(e.reason() == "invalid_parameter");

@@ -61,6 +61,7 @@ double fraction_option(const Parsed_arguments& a, const std::string& name, doubl
 /// distance to the mesh as read (the build measures it to the closed one).
 struct Handle_closing
 {
+  bool ran = false;  ///< --small-handle-length > 0; otherwise the mesh built is the mesh read
   PI::Small_handle_removal_result result;
   std::optional<PI::Boundary_distance> to_input;
   /// The stage's own warnings, and a hint when a kept handle is that small and the volume invalid.
@@ -81,7 +82,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("input_vertices", num_vertices(in.mesh))
       .member("input_faces", num_faces(in.mesh))
       .member("genus", L.genus)
-      .member("input_genus", closing.result.genus_before)
+      .member("input_genus", closing.ran ? closing.result.genus_before : L.genus)
       .member("boundary_loops", L.boundary_loops)
       .member("layout_class", PI::layout_class_name(L.layout_class))
       .member("pants", L.number_of_pants)
@@ -110,6 +111,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("belt_phase", model.belt_phase)
       .member("corners_off_steps", model.corners_off_steps)
       .member("arcs_relaxed", model.arc_relaxation.arcs_moved)
+      .member("nodes_relocated", model.node_relocation.nodes_moved)
       .member("relaxation_sweeps", V.relaxation.sweeps)
       .member("relaxation_last_move", V.relaxation.last_move)
       .member("valid", reasons.empty())
@@ -202,7 +204,7 @@ int run_build(const Arguments& args)
                       "--no-untangle", "--no-step-retry"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
                       "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--min-degree", "--relax-sweeps", "--stretch-rounds",
-                      "--sharp-boundary-turn", "--belt-phases", "--relax-arcs", "--cut-pair-trials", "--missing-part-cubes",
+                      "--sharp-boundary-turn", "--belt-phases", "--relax-arcs", "--relocate-nodes", "--cut-pair-trials", "--missing-part-cubes",
                       "--small-handle-length"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
@@ -221,6 +223,7 @@ int run_build(const Arguments& args)
   const double sharp_turn = fraction_option(a, "--sharp-boundary-turn", 60., 0., 180.);
   const int belt_phases = positive_option(a, "--belt-phases", 4, 1, 8);
   const int arc_sweeps = positive_option(a, "--relax-arcs", 0, 0, 100);
+  const int node_sweeps = positive_option(a, "--relocate-nodes", 0, 0, 100);
   const int pair_trials = positive_option(a, "--cut-pair-trials", PI::default_cut_pair_trials, 1, 1000);
   const int missing_part_cubes = positive_option(a, "--missing-part-cubes", 2, 0, 16);
   const double small_handle_length = fraction_option(a, "--small-handle-length", 0., 0., 0.5);
@@ -240,6 +243,7 @@ int run_build(const Arguments& args)
   Mesh mesh = in.mesh;
   if(small_handle_length > 0.) {
     progress("closing small handles");
+    closing.ran = true;
     closing.result = PI::Small_handle_removal<Mesh::Point>()(mesh, PI::parameters::small_handle_length(small_handle_length));
     closing.warnings = closing.result.warnings;
   }
@@ -248,7 +252,7 @@ int run_build(const Arguments& args)
       .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
       .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid).minimum_spline_degree(min_degree)
       .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn).belt_phases(belt_phases)
-      .step_retry(!a.has("--no-step-retry")).arc_relaxation_sweeps(arc_sweeps).cut_pair_trials(pair_trials)
+      .step_retry(!a.has("--no-step-retry")).arc_relaxation_sweeps(arc_sweeps).node_relocation_sweeps(node_sweeps).cut_pair_trials(pair_trials)
       .missing_part_cubes(missing_part_cubes)
       // An invalid volume is not written without --allow-invalid: no time spent improving it.
       .untangle_invalid_result(a.has("--allow-invalid")),
@@ -322,8 +326,8 @@ Register_command build_command("build", {
   "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--max-grid M]\n"
   "                          [--min-grid M] [--min-degree D] [--relax-sweeps S] [--stretch-rounds R]\n"
   "                          [--sharp-boundary-turn D] [--belt-phases K] [--no-step-retry] [--relax-arcs K]\n"
-  "                          [--cut-pair-trials K] [--missing-part-cubes K] [--small-handle-length F]\n"
-  "                          [--no-untangle]\n"
+  "                          [--relocate-nodes K] [--cut-pair-trials K] [--missing-part-cubes K]\n"
+  "                          [--small-handle-length F] [--no-untangle]\n"
   "                          [--allow-invalid]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
@@ -360,6 +364,10 @@ Register_command build_command("build", {
   "  --relax-arcs K    before the volume is built, up to K sweeps re-trace each arc between two\n"
   "                    surface patches as the middle of their union where that brings the\n"
   "                    corners at its ends nearer right angles (default 0: never)\n"
+  "  --relocate-nodes K  before the volume is built (and before --relax-arcs), up to K sweeps move\n"
+  "                    each node whose corners are over 30 degrees from right angles inside the\n"
+  "                    union of its patches, re-tracing its arcs, where that brings the corners\n"
+  "                    nearer right angles; nodes on a boundary loop stay (default 0: never)\n"
   "  --cut-pair-trials K  the pants stage traces the cuts around the K most promising pairs of\n"
   "                    holes at each step and takes the most promising one whose cut is within\n"
   "                    10% of the lightest (default 16; 1: the most promising pair alone)\n"

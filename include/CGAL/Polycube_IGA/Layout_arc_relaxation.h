@@ -25,6 +25,7 @@
 #include <CGAL/Polycube_IGA/Polycube_layout.h>
 #include <CGAL/Polycube_IGA/internal/cotangent_laplacian.h>
 #include <CGAL/Polycube_IGA/internal/layout_corner_angles.h>
+#include <CGAL/Polycube_IGA/internal/layout_sweeps.h>
 #include <CGAL/Polycube_IGA/internal/mesh_pieces.h>
 #include <CGAL/Polycube_IGA/internal/sparse_cholesky.h>
 
@@ -38,6 +39,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace CGAL {
@@ -113,7 +115,7 @@ bool relax_arc(Polycube_layout<Point_3>& L, std::size_t a, const std::array<std:
   // border's halfedges whose faces are in the union seed the two sides' flood fills.
   std::vector<double> value(num_vertices(m), std::numeric_limits<double>::quiet_NaN());
   std::set<std::size_t> border_edges;
-  std::array<std::vector<H>, 2> seeds;
+  std::vector<std::vector<H>> seeds(2);
   for(int s = 0; s < 2; ++s) {
     const std::size_t p = s == 0 ? pa : pb;
     for(std::size_t i = 0; i < 4; ++i) {
@@ -226,38 +228,11 @@ bool relax_arc(Polycube_layout<Point_3>& L, std::size_t a, const std::array<std:
   auto sides_of = [&](const std::vector<V>& path) {
     std::set<std::size_t> barrier = border_edges;
     for(std::size_t k = 1; k < path.size(); ++k) barrier.insert(std::size_t(edge(halfedge(path[k - 1], path[k], m).first, m)));
-    std::vector<signed char> side(num_faces(m), -1);
-    std::array<std::vector<F>, 2> out;
-    for(int s = 0; s < 2; ++s) {
-      std::vector<F> stack;
-      for(H h : seeds[std::size_t(s)]) {
-        const F f = face(h, m);
-        if(side[std::size_t(f)] == s) continue;
-        if(side[std::size_t(f)] >= 0) return std::array<std::vector<F>, 2>{};
-        side[std::size_t(f)] = char(s);
-        stack.push_back(f);
-      }
-      while(!stack.empty()) {
-        const F f = stack.back();
-        stack.pop_back();
-        out[std::size_t(s)].push_back(f);
-        for(H h : halfedges_around_face(halfedge(f, m), m)) {
-          if(barrier.count(std::size_t(edge(h, m))) || is_border(opposite(h, m), m)) continue;
-          const F g = face(opposite(h, m), m);
-          if(side[std::size_t(g)] == s) continue;
-          if(side[std::size_t(g)] >= 0) return std::array<std::vector<F>, 2>{};
-          side[std::size_t(g)] = char(s);
-          stack.push_back(g);
-        }
-      }
-    }
-    if(out[0].empty() || out[1].empty() || out[0].size() + out[1].size() != total) return std::array<std::vector<F>, 2>{};
-    for(auto& o : out) std::sort(o.begin(), o.end());
-    return out;
+    return faces_between_barriers(m, seeds, barrier, total);
   };
   auto restore_old = [&] {
     auto faces = sides_of(old_path);
-    if(faces[0].empty()) throw Internal_error("invalid_layout", "the arc relaxation lost patches " + std::to_string(pa) + " and " + std::to_string(pb));
+    if(faces.empty()) throw Internal_error("invalid_layout", "the arc relaxation lost patches " + std::to_string(pa) + " and " + std::to_string(pb));
     L.arcs[a].vertices = old_path;
     L.patches[pa].faces = std::move(faces[0]);
     L.patches[pb].faces = std::move(faces[1]);
@@ -282,7 +257,7 @@ bool relax_arc(Polycube_layout<Point_3>& L, std::size_t a, const std::array<std:
   }
   if(path == old_path) return restore_old();
   auto faces = sides_of(path);
-  if(faces[0].empty()) return restore_old();
+  if(faces.empty()) return restore_old();
 
   L.arcs[a].vertices = path;
   L.patches[pa].faces = std::move(faces[0]);
@@ -305,21 +280,11 @@ bool relax_arc(Polycube_layout<Point_3>& L, std::size_t a, const std::array<std:
 template <class Point_3>
 Arc_relaxation_result relax_layout_arcs(Polycube_layout<Point_3>& L, int sweeps = 3)
 {
-  if(sweeps < 0) throw Invalid_input_error("invalid_parameter", "the arc relaxation's sweeps must not be negative");
   Arc_relaxation_result result;
   const auto sides = internal::surface_sides_of_arcs(L);
-  for(int s = 0; s < sweeps; ++s) {
-    ++result.sweeps;
-    std::size_t moved = 0;
-    for(std::size_t a = 0; a < L.arcs.size(); ++a)
-      if(sides[a].size() == 2 && internal::relax_arc(L, a, sides[a][0], sides[a][1], result)) ++moved;
-    result.arcs_moved += moved;
-    if(moved == 0) break;
-  }
-  if(result.arcs_moved > 0) {
-    const Layout_validation v = L.validate();
-    if(!v.is_valid()) throw Internal_error("invalid_layout", "the arc relaxation broke the layout: " + v.problems.front());
-  }
+  std::tie(result.arcs_moved, result.sweeps) = internal::sweep_layout(L, sweeps, L.arcs.size(), "arc relaxation", [&](std::size_t a) {
+    return sides[a].size() == 2 && internal::relax_arc(L, a, sides[a][0], sides[a][1], result);
+  });
   return result;
 }
 

@@ -64,6 +64,7 @@ namespace Polycube_IGA {
   X(belt_phases_t, belt_phases)                                                     \
   X(step_retry_t, step_retry)                                                       \
   X(arc_relaxation_sweeps_t, arc_relaxation_sweeps)                               \
+  X(node_relocation_sweeps_t, node_relocation_sweeps)                             \
   X(missing_part_cubes_t, missing_part_cubes)
 
 namespace internal_np {
