@@ -93,18 +93,11 @@ bool relax_arc(Polycube_layout<Point_3>& L, std::size_t a, const std::array<std:
   // Kept only if the four corners at the arc's ends come nearer right angles (their summed
   // squared deviation from 90 degrees); arcs whose corners are all within 10 degrees of
   // it are left alone (a box's edges).
-  auto deviation = [&](double* largest) {
-    double sum = 0.;
-    for(const auto& side : {side_a, side_b})
-      for(std::size_t c : {side[1], (side[1] + 1) % 4}) {
-        const double d = surface_corner_angle(L, side[0], int(c)) - 90.;
-        sum += d * d;
-        if(largest) *largest = std::max(*largest, std::abs(d));
-      }
-    return sum;
-  };
+  std::vector<std::array<std::size_t, 2>> end_corners;
+  for(const auto& side : {side_a, side_b})
+    for(std::size_t c : {side[1], (side[1] + 1) % 4}) end_corners.push_back({{side[0], c}});
   double largest = 0.;
-  const double before = deviation(&largest);
+  const double before = squared_corner_deviation(L, end_corners, &largest);
   if(largest <= 10.) return false;
   std::vector<signed char> in_union(num_faces(m), 0);
   for(F f : L.patches[pa].faces) in_union[std::size_t(f)] = 1;
@@ -262,7 +255,7 @@ bool relax_arc(Polycube_layout<Point_3>& L, std::size_t a, const std::array<std:
   L.arcs[a].vertices = path;
   L.patches[pa].faces = std::move(faces[0]);
   L.patches[pb].faces = std::move(faces[1]);
-  const double after = deviation(nullptr);
+  const double after = squared_corner_deviation(L, end_corners);
   if(!(after < 0.99 * before)) return restore_old();
   result.squared_deviation_before += before;
   result.squared_deviation_after += after;

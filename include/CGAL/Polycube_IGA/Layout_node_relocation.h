@@ -62,14 +62,6 @@ struct Node_relocation_result
 
 namespace internal {
 
-/// Angle (degrees, in [0, 360)) at a corner whose two arcs leave in directions `next` and
-/// `previous` about the outward `normal`, as surface_corner_angle() measures it.
-inline double corner_angle_between(const Eigen::Vector3d& normal, const Eigen::Vector3d& next, const Eigen::Vector3d& previous)
-{
-  const double a = std::atan2(next.cross(previous).norm(), next.dot(previous)) * 180. / CGAL_PI;
-  return normal.dot(next.cross(previous)) >= 0. ? a : 360. - a;
-}
-
 /// Point location in a piece's uv map (a bucket grid over the unit disk), and the 3D point
 /// at a uv position by barycentric interpolation.
 template <class P>
@@ -187,18 +179,11 @@ bool relocate_node(Polycube_layout<Point_3>& L, std::size_t n, Node_relocation_r
   if(far_seen.count(n)) return false;
 
   // The corners the move changes: at n, and at both ends of every patch's spokes.
-  auto deviation = [&](double* largest) {
-    double sum = 0.;
-    for(const auto& s : ring)
-      for(std::size_t c : {s[1], (s[1] + 1) % 4, (s[1] + 3) % 4}) {
-        const double d = surface_corner_angle(L, s[0], int(c)) - 90.;
-        sum += d * d;
-        if(largest) *largest = std::max(*largest, std::abs(d));
-      }
-    return sum;
-  };
+  std::vector<std::array<std::size_t, 2>> changed_corners;
+  for(const auto& s : ring)
+    for(std::size_t c : {s[1], (s[1] + 1) % 4, (s[1] + 3) % 4}) changed_corners.push_back({{s[0], c}});
   double largest = 0.;
-  const double before = deviation(&largest);
+  const double before = squared_corner_deviation(L, changed_corners, &largest);
   if(largest <= 30.) return false;
 
   // The union's border loop, counter-clockwise: each ring patch's two outer arcs.
@@ -478,7 +463,7 @@ bool relocate_node(Polycube_layout<Point_3>& L, std::size_t n, Node_relocation_r
   auto faces_of = sectors(new_paths);
   if(faces_of.empty()) return restore_old();
   apply(centre, new_paths, std::move(faces_of));
-  const double after = deviation(nullptr);
+  const double after = squared_corner_deviation(L, changed_corners);
   if(!(after < 0.9 * before)) return restore_old();
   result.squared_deviation_before += before;
   result.squared_deviation_after += after;

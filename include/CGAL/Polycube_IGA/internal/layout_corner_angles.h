@@ -53,6 +53,14 @@ Eigen::Vector3d leaving_direction(const Polycube_layout<Point_3>& L,
   return Eigen::Vector3d(points[std::min(k, points.size() - 1)] - points[0]);
 }
 
+/// Angle (degrees, in [0, 360)) at a corner whose two arcs leave in directions `next` and
+/// `previous`: reflex (360 minus it) where they turn clockwise about the outward `normal`.
+inline double corner_angle_between(const Eigen::Vector3d& normal, const Eigen::Vector3d& next, const Eigen::Vector3d& previous)
+{
+  const double a = std::atan2(next.cross(previous).norm(), next.dot(previous)) * 180. / CGAL_PI;
+  return normal.dot(next.cross(previous)) >= 0. ? a : 360. - a;
+}
+
 /// The interior angle (degrees, in [0, 360)) of SURFACE patch p at its corner i: between the
 /// directions in which its two arcs leave the corner (leaving_direction()), reflex (360
 /// minus it) where they turn clockwise about the node's outward normal (patches are
@@ -70,8 +78,22 @@ double surface_corner_angle(const Polycube_layout<Point_3>& L, std::size_t p, in
   };
   const Eigen::Vector3d next = from_node(pa.arcs[std::size_t(i)]);
   const Eigen::Vector3d previous = from_node(pa.arcs[std::size_t((i + 3) % 4)]);
-  const double a = std::atan2(next.cross(previous).norm(), next.dot(previous)) * 180. / CGAL_PI;
-  return normal.dot(next.cross(previous)) >= 0. ? a : 360. - a;
+  return corner_angle_between(normal, next, previous);
+}
+
+/// Sum over the SURFACE patch corners `corners` ({patch, corner index}) of (angle - 90)^2,
+/// and in `*largest` (if given) the largest |angle - 90| met (not below its value on entry).
+template <class Point_3>
+double squared_corner_deviation(const Polycube_layout<Point_3>& L, const std::vector<std::array<std::size_t, 2>>& corners,
+                                double* largest = nullptr)
+{
+  double sum = 0.;
+  for(const auto& c : corners) {
+    const double d = surface_corner_angle(L, c[0], int(c[1])) - 90.;
+    sum += d * d;
+    if(largest) *largest = std::max(*largest, std::abs(d));
+  }
+  return sum;
 }
 
 /// surface_corner_angle() of every SURFACE patch at its four corners (zeros for the others).
