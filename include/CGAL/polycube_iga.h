@@ -681,9 +681,10 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
 /// deviation 42 -> 33 degrees at 3 sweeps), so far without a volume that becomes valid.
 /// `node_relocation_sweeps` (0): sweeps of relocate_layout_nodes() on every layout before its
 /// volume is built, and before the arc relaxation (Layout_node_relocation.h): nodes moved in
-/// the union of their patches where their corners come nearer right angles (mean deviation
-/// joint.off 52 -> 31 degrees, mech-holes-shark.off 36 -> 24, whose volume then leaves 2 of
-/// 38 patches uncertified instead of 8), so far without a volume that becomes valid.
+/// the union of their patches, or along their hole's rim, where their corners come nearer
+/// right angles (mean deviation joint.off 52 -> 31 degrees, mech-holes-shark.off 36 -> 21,
+/// whose volume then leaves 2 of 38 patches uncertified instead of 8), so far without a
+/// volume that becomes valid.
 /// `missing_part_cubes` (2): when the first volume misses a part of the shape (a mesh point
 /// far from it while all of it is near the mesh: a protrusion that a patch's map to the
 /// square shrinks), that patch gets a cube of its own, its bottom around the farthest point

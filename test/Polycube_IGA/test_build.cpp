@@ -196,6 +196,17 @@ TEST_CASE("build CLI writes nothing invalid and always reports", "[build][cli]")
   // eight.off's layout: 30 surface patches (120 corners), the same figures as the library's.
   CHECK(rep.find("\"layout_corners\":{\"corners\":120,") != std::string::npos);
   CHECK(rep.find("\"reflex\":") != std::string::npos);
+  // Every sliver, nearly flat and reflex corner is listed by patch and node.
+  auto count_of = [&](const std::string& key) {
+    const std::size_t at = rep.find("\"" + key + "\":");
+    return at == std::string::npos ? -1 : std::stoi(rep.substr(at + key.size() + 3));
+  };
+  const std::size_t bad_at = rep.find("\"bad_corners\":[");
+  REQUIRE(bad_at != std::string::npos);
+  const std::string bad = rep.substr(bad_at, rep.find(']', bad_at) - bad_at);
+  std::size_t listed = 0;
+  for(std::size_t at = bad.find("\"degrees\":"); at != std::string::npos; at = bad.find("\"degrees\":", at + 1)) ++listed;
+  CHECK(int(listed) == count_of("slivers") + count_of("nearly_flat") + count_of("reflex"));
   CHECK(exists(layout));
   if(r.exit_code == 0) {
     CHECK(rep.find("\"valid\":true") != std::string::npos);

@@ -125,6 +125,15 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("nearly_flat", corners.nearly_flat)
       .member("reflex", corners.reflex)
       .end_object();
+    // Every corner the statistics count as a sliver, nearly flat or reflex, by patch and
+    // node: where a user (or the next stage's author) looks first when det J is not positive.
+    w.key("bad_corners").begin_array();
+    const std::vector<std::array<double, 4>> angles = PI::internal::surface_corner_angles(L);
+    for(std::size_t p = 0; p < angles.size(); ++p)
+      for(std::size_t i = 0; i < 4; ++i)
+        if(L.patches[p].kind == std::decay_t<decltype(L)>::SURFACE && PI::internal::is_bad_corner(angles[p][i]))
+          w.begin_object().member("patch", p).member("node", L.patches[p].corners[i]).member("degrees", angles[p][i]).end_object();
+    w.end_array();
     w.key("grid_attempts").begin_array();
     for(int g : model.grid_attempts) w.value(g);
     w.end_array();
@@ -367,7 +376,8 @@ Register_command build_command("build", {
   "  --relocate-nodes K  before the volume is built (and before --relax-arcs), up to K sweeps move\n"
   "                    each node whose corners are over 30 degrees from right angles inside the\n"
   "                    union of its patches, re-tracing its arcs, where that brings the corners\n"
-  "                    nearer right angles; nodes on a boundary loop stay (default 0: never)\n"
+  "                    nearer right angles; a node on a boundary loop slides along it\n"
+  "                    (default 0: never)\n"
   "  --cut-pair-trials K  the pants stage traces the cuts around the K most promising pairs of\n"
   "                    holes at each step and takes the most promising one whose cut is within\n"
   "                    10% of the lightest (default 16; 1: the most promising pair alone)\n"

@@ -111,6 +111,13 @@ std::vector<std::array<double, 4>> surface_corner_angles(const Polycube_layout<P
 /// the volume is not valid.
 constexpr double sliver_corner_degrees = 25.;
 
+/// A corner angle (degrees) that lets a fitted face degenerate or turn over: a sliver,
+/// nearly flat or reflex.
+inline bool is_bad_corner(double degrees)
+{
+  return degrees < sliver_corner_degrees || degrees > 180. - sliver_corner_degrees;
+}
+
 /// The corners of a layout's surface patches as surface_corner_angles() measures them on the
 /// mesh: how far they are from right angles, and how many would let a fitted face degenerate
 /// (under `sliver_corner_degrees` or over 180 minus it) or turn over (reflex). Over the test
