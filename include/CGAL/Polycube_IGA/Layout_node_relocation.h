@@ -25,9 +25,8 @@
 // A node on an input boundary loop (a cap's corner) has one inner arc, and where the cap
 // corners at 1/8, 3/8, ... of the loop put it, that arc may leave almost along the rim
 // (mech-holes-shark.off: 191 and 17 degrees). Such a node (one of its corners a sliver,
-// nearly flat or reflex) slides along the rim instead:
-// its two surface patches' union has the node on its border, the candidates are the rim
-// vertices of its two cap arcs (keeping each at least a quarter of their joint length, so
+// nearly flat or reflex) slides along the rim instead: its two surface patches' union has
+// the node on its border, the candidates are the rim vertices of its two cap arcs (keeping each at least a quarter of their joint length, so
 // the cap's sides stay within 1:3), and its inner arc is the map's straight chord to the
 // far node, estimated, inserted and kept or undone the same way.
 
@@ -148,6 +147,10 @@ struct Union_disk
   std::vector<bool> on_loop;             ///< by mesh vertex (as built; later splits are inner)
   Uv_map<Point_3> uv;
 
+  Union_disk() = default;
+  Union_disk(const Union_disk&) = delete; // `piece` points into `pieces`
+  Union_disk& operator=(const Union_disk&) = delete;
+
   /// Builds the map; false when `loop` is not the border of exactly `patches`' faces, or the
   /// piece is not a plain copy of them.
   bool build(Polycube_layout<Point_3>& L, const std::vector<std::size_t>& patches, const std::vector<V>& loop)
@@ -166,6 +169,7 @@ struct Union_disk
         in_union[std::size_t(f)] = 1;
         ++union_faces;
       }
+    if(patches.empty() || L.patches[patches.front()].faces.empty()) return false;
     pieces = cut_into_pieces(m, cut);
     const F first_face = L.patches[patches.front()].faces.front();
     for(Mesh& q : pieces) {
