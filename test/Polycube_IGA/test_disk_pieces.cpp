@@ -469,6 +469,49 @@ TEST_CASE("border_loop refuses pieces that are not disks", "[disk_pieces]")
   CHECK_THROWS_AS(PII::border_loop(disk, interior), CGAL::Polycube_IGA::Internal_error);
 }
 
+// The node relocation cuts out the union of a few patches for every node: with `only`, the
+// rest of the mesh is not copied, and the union's piece must be the one the full cut gives.
+TEST_CASE("cutting a face set alone gives the same pieces as cutting it out of the mesh", "[disk_pieces]")
+{
+  const Mesh m = load(data("sphere.off"));
+  const std::vector<bool> cut = sphere_belt(m, 0.05);
+  const std::vector<Mesh> all = PII::cut_into_pieces(m, cut);
+  REQUIRE(all.size() == 2);
+  for(std::size_t k = 0; k < 2; ++k) {
+    auto fpar = all[k].property_map<F, std::size_t>("f:parent").first;
+    auto vpar = all[k].property_map<V, std::size_t>("v:parent").first;
+    std::vector<bool> only(num_faces(m), false);
+    for(F f : faces(all[k])) only[fpar[f]] = true;
+    const std::vector<Mesh> alone = PII::cut_into_pieces(m, cut, only);
+    REQUIRE(alone.size() == 1);
+    const Mesh& p = alone[0];
+    auto fpar1 = p.property_map<F, std::size_t>("f:parent").first;
+    auto vpar1 = p.property_map<V, std::size_t>("v:parent").first;
+    REQUIRE(num_faces(p) == num_faces(all[k]));
+    REQUIRE(num_vertices(p) == num_vertices(all[k]));
+    bool same = true;
+    for(V v : vertices(p)) same = same && vpar1[v] == vpar[v] && p.point(v) == all[k].point(v);
+    for(F f : faces(p)) {
+      same = same && fpar1[f] == fpar[f];
+      std::vector<V> a, b;
+      for(V v : vertices_around_face(halfedge(f, p), p)) a.push_back(v);
+      for(V v : vertices_around_face(halfedge(f, all[k]), all[k])) b.push_back(v);
+      same = same && a == b;
+    }
+    CHECK(same);
+  }
+  // Without the belt cut, a hemisphere's faces alone are still one piece: the faces left
+  // out count as cut off.
+  std::vector<bool> half(num_faces(m), false);
+  auto fpar0 = all[0].property_map<F, std::size_t>("f:parent").first;
+  for(F f : faces(all[0])) half[fpar0[f]] = true;
+  const std::vector<Mesh> uncut = PII::cut_into_pieces(m, std::vector<bool>{}, half);
+  REQUIRE(uncut.size() == 1);
+  CHECK(num_faces(uncut[0]) == num_faces(all[0]));
+  CHECK(euler(uncut[0]) == 1);
+  CHECK_THROWS_AS(PII::cut_into_pieces(m, cut, std::vector<bool>(3, true)), CGAL::Polycube_IGA::Internal_error);
+}
+
 TEST_CASE("cylinder: seam cut then square map then wheel then glue", "[disk_pieces]")
 {
   const Mesh m = load(data("blade.off"));

@@ -137,7 +137,7 @@ struct Union_disk
   using Mesh = typename Polycube_layout<Point_3>::Mesh;
   using V = typename Mesh::Vertex_index;
   using F = typename Mesh::Face_index;
-  std::vector<Mesh> pieces; ///< the cut's pieces; `piece` points into it
+  std::vector<Mesh> pieces; ///< the union's pieces (one, if it is a disk); `piece` points into it
   Mesh* piece = nullptr;
   typename Mesh::template Property_map<V, std::size_t> parent; ///< piece vertex -> mesh vertex
   std::vector<V> piece_vertex;           ///< mesh vertex -> piece vertex (V() outside)
@@ -170,7 +170,9 @@ struct Union_disk
         ++union_faces;
       }
     if(patches.empty() || L.patches[patches.front()].faces.empty()) return false;
-    pieces = cut_into_pieces(m, cut);
+    // The union's faces alone: copying the whole mesh for each node is most of the work.
+    std::vector<bool> union_flags(in_union.begin(), in_union.end());
+    pieces = cut_into_pieces(m, cut, union_flags);
     const F first_face = L.patches[patches.front()].faces.front();
     for(Mesh& q : pieces) {
       const auto fpar = q.template property_map<F, std::size_t>("f:parent").first;

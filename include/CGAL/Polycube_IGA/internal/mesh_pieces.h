@@ -104,15 +104,20 @@ typename CGAL::Surface_mesh<P>::Halfedge_index split_edge_at(CGAL::Surface_mesh<
 /// separate meshes, ordered by their smallest face of m. A vertex is copied once per fan of
 /// faces around it that cut edges and borders separate. Pieces carry "v:parent" and
 /// "f:parent" (indices in m) and keep m's face orientation; a piece's vertices come in the
-/// order its faces (by index in m) first use them.
+/// order its faces (by index in m) first use them. With `only` (flags by face of m), the
+/// faces without the flag are left out, as if cut off: the pieces of a face set, without
+/// copying the rest of m.
 template <class P>
-std::vector<CGAL::Surface_mesh<P>> cut_into_pieces(const CGAL::Surface_mesh<P>& m, const std::vector<bool>& cut_edge)
+std::vector<CGAL::Surface_mesh<P>> cut_into_pieces(const CGAL::Surface_mesh<P>& m, const std::vector<bool>& cut_edge,
+                                                   const std::vector<bool>& only = {})
 {
   using Mesh = CGAL::Surface_mesh<P>;
   using V = typename Mesh::Vertex_index;
   if(m.has_garbage()) throw Internal_error("cut_failed", "cannot cut a mesh with removed elements (collect its garbage first)");
   if(!cut_edge.empty() && cut_edge.size() < num_edges(m)) throw Internal_error("cut_failed", "the cut edge flags do not cover every edge");
   const std::size_t nf = num_faces(m);
+  if(!only.empty() && only.size() < nf) throw Internal_error("cut_failed", "the face flags do not cover every face");
+  auto kept = [&](typename Mesh::Face_index f) { return only.empty() || only[std::size_t(f)]; };
   for(auto f : faces(m))
     if(degree(f, m) != 3) throw Internal_error("not_a_triangle_mesh", "cutting needs a triangle mesh");
   // Union-find over face corners 3f+k (the k-th vertex of face f): corners of one vertex
@@ -137,7 +142,7 @@ std::vector<CGAL::Surface_mesh<P>> cut_into_pieces(const CGAL::Surface_mesh<P>& 
   for(auto e : edges(m)) {
     if(!cut_edge.empty() && cut_edge[std::size_t(e)]) continue;
     const auto h = halfedge(e, m), o = opposite(h, m);
-    if(is_border(h, m) || is_border(o, m)) continue;
+    if(is_border(h, m) || is_border(o, m) || !kept(face(h, m)) || !kept(face(o, m))) continue;
     // h: a -> b in f, o: b -> a in g. Corner of b in f = target(h); of b in g = source(o)
     // = target(prev(o)); of a in f = target(prev(h)); of a in g = target(o).
     unite(corner(h), corner(prev(o, m)));
@@ -153,13 +158,14 @@ std::vector<CGAL::Surface_mesh<P>> cut_into_pieces(const CGAL::Surface_mesh<P>& 
   for(auto e : edges(m)) {
     if(!cut_edge.empty() && cut_edge[std::size_t(e)]) continue;
     const auto h = halfedge(e, m), o = opposite(h, m);
-    if(is_border(h, m) || is_border(o, m)) continue;
+    if(is_border(h, m) || is_border(o, m) || !kept(face(h, m)) || !kept(face(o, m))) continue;
     const std::size_t a = ffind(std::size_t(face(h, m))), b = ffind(std::size_t(face(o, m)));
     if(a != b) face_root[std::max(a, b)] = std::min(a, b);
   }
   std::vector<std::size_t> component(nf, no_parent);
   std::size_t nc = 0;
   for(std::size_t f = 0; f < nf; ++f) {
+    if(!kept(face_at<P>(f))) continue;
     const std::size_t r = ffind(f);
     if(component[r] == no_parent) component[r] = nc++;
     component[f] = component[r];
@@ -174,6 +180,7 @@ std::vector<CGAL::Surface_mesh<P>> cut_into_pieces(const CGAL::Surface_mesh<P>& 
   std::vector<std::uint32_t> copy(3 * nf, std::uint32_t(-1)); // corner root -> piece vertex
   for(std::size_t f = 0; f < nf; ++f) {
     const auto fd = face_at<P>(f);
+    if(!kept(fd)) continue;
     const std::size_t c = component[f];
     Mesh& piece = pieces[c];
     std::array<V, 3> vs;
