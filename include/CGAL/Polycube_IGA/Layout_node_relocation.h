@@ -26,9 +26,10 @@
 // corners at 1/8, 3/8, ... of the loop put it, that arc may leave almost along the rim
 // (mech-holes-shark.off: 191 and 17 degrees). Such a node (one of its corners a sliver,
 // nearly flat or reflex) slides along the rim instead: its two surface patches' union has
-// the node on its border, the candidates are the rim vertices of its two cap arcs (keeping each at least a quarter of their joint length, so
-// the cap's sides stay within 1:3), and its inner arc is the map's straight chord to the
-// far node, estimated, inserted and kept or undone the same way.
+// the node on its border, the candidates are the rim vertices of its two cap arcs (keeping
+// each at least a quarter of their joint length, so the cap's sides stay within 1:3), and
+// its inner arc is the map's straight chord to the far node, estimated, inserted and kept
+// or undone the same way.
 
 #ifndef CGAL_POLYCUBE_IGA_LAYOUT_NODE_RELOCATION_H
 #define CGAL_POLYCUBE_IGA_LAYOUT_NODE_RELOCATION_H
