@@ -144,7 +144,8 @@ struct Union_disk
   std::vector<V> piece_vertex;           ///< mesh vertex -> piece vertex (V() outside)
   std::vector<V> piece_loop;             ///< the border loop in the piece
   std::vector<bool> cut;                 ///< by mesh edge: on the union's border
-  std::vector<signed char> in_union;     ///< by mesh face
+  std::vector<bool> in_union;            ///< by mesh face
+  std::vector<F> union_faces;            ///< in index order (insertions append the faces they split off)
   std::vector<bool> on_loop;             ///< by mesh vertex (as built; later splits are inner)
   Uv_map<Point_3> uv;
 
@@ -163,25 +164,19 @@ struct Union_disk
       if(!h.second) return false;
       cut[std::size_t(edge(h.first, m))] = true;
     }
-    in_union.assign(num_faces(m), 0);
-    std::size_t union_faces = 0;
+    in_union.assign(num_faces(m), false);
+    union_faces.clear();
     for(std::size_t p : patches)
       for(F f : L.patches[p].faces) {
-        in_union[std::size_t(f)] = 1;
-        ++union_faces;
+        in_union[std::size_t(f)] = true;
+        union_faces.push_back(f);
       }
-    if(patches.empty() || L.patches[patches.front()].faces.empty()) return false;
+    std::sort(union_faces.begin(), union_faces.end());
     // The union's faces alone: copying the whole mesh for each node is most of the work.
-    std::vector<bool> union_flags(in_union.begin(), in_union.end());
-    pieces = cut_into_pieces(m, cut, union_flags);
-    const F first_face = L.patches[patches.front()].faces.front();
-    for(Mesh& q : pieces) {
-      const auto fpar = q.template property_map<F, std::size_t>("f:parent").first;
-      for(F f : faces(q))
-        if(fpar[f] == std::size_t(first_face)) piece = &q;
-      if(piece) break;
-    }
-    if(!piece || num_faces(*piece) != union_faces) return false;
+    // Every piece is then part of the union, so a disk union is the only piece.
+    pieces = cut_into_pieces(m, cut, in_union);
+    if(pieces.size() != 1 || num_faces(pieces.front()) != union_faces.size()) return false;
+    piece = &pieces.front();
     parent = piece->template property_map<V, std::size_t>("v:parent").first;
     piece_vertex.assign(num_vertices(m), V());
     for(V v : vertices(*piece)) piece_vertex[parent[v]] = v;
@@ -249,11 +244,8 @@ public:
     std::vector<signed char> on_line(num_vertices(m_), 0);
     on_line[std::size_t(from)] = on_line[std::size_t(to)] = 1;
     // Inner vertices within a tenth of an edge of the segment join it (no slivers).
-    std::vector<F> union_face_list;
-    for(F f : faces(m_))
-      if(u_.in_union[std::size_t(f)]) union_face_list.push_back(f);
     std::set<V> inner;
-    for(F f : union_face_list)
+    for(F f : u_.union_faces)
       for(V v : vertices_around_face(halfedge(f, m_), m_))
         if(std::isfinite(uvm_[std::size_t(v)].x()) && !(std::size_t(v) < u_.on_loop.size() && u_.on_loop[std::size_t(v)])) inner.insert(v);
     for(V v : inner) {
@@ -266,7 +258,7 @@ public:
     }
     std::vector<std::pair<std::array<V, 2>, double>> splits;
     std::set<std::size_t> seen;
-    for(F f : union_face_list)
+    for(F f : u_.union_faces)
       for(H h : halfedges_around_face(halfedge(f, m_), m_)) {
         const V a = source(h, m_), b = target(h, m_);
         if(on_line[std::size_t(a)] || on_line[std::size_t(b)] || !edge_inside(h)) continue;
@@ -285,7 +277,9 @@ public:
       on_line.push_back(1);
       split_of_[{a, b}] = split_of_[{b, a}] = x;
     }
-    u_.in_union.resize(num_faces(m_), 1); // the new faces were cut from the union's
+    // The new faces were cut from the union's; their indices follow all others.
+    for(std::size_t f = u_.in_union.size(); f < num_faces(m_); ++f) u_.union_faces.push_back(F(typename F::size_type(f)));
+    u_.in_union.resize(num_faces(m_), true);
     // The path from `from`: each step to the on-line neighbour inside the union that is
     // farthest along without passing `to`.
     std::vector<V> path{from};
@@ -355,8 +349,7 @@ union_sectors(const Polycube_layout<Point_3>& L, const Union_disk<Point_3>& u,
       if(!h.second) return {};
       barrier.insert(std::size_t(edge(h.first, m)));
     }
-  const std::size_t total = std::size_t(std::count(u.in_union.begin(), u.in_union.end(), 1));
-  return faces_between_barriers(m, seeds, barrier, total);
+  return faces_between_barriers(m, seeds, barrier, u.union_faces.size());
 }
 
 /// The halfedges inside the union along an arc's vertex path (flood-fill seeds).
