@@ -9,6 +9,7 @@
 
 #include <CGAL/Polycube_IGA/Cuboid_decomposition.h>
 #include <CGAL/Polycube_IGA/IO/gismo_xml.h>
+#include <CGAL/Polycube_IGA/Layout_node_relocation.h>
 #include <CGAL/Polycube_IGA/Layout_volume.h>
 #include <CGAL/Polycube_IGA/Patch_sampling.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
@@ -544,6 +545,7 @@ TEST_CASE("the boundary layer stays inside a thin blade", "[layout_volume][bound
   PI::Padding_options uncapped;
   uncapped.maximum_thickness_fraction = 0.;
   uncapped.maximum_depth_slope = 0.;
+  uncapped.folded_corner_lift = 1.;
   CHECK(crossing(PI::pad_layout(L, g, uncapped)) > nn / 2);
 
   const PI::Padding_options po;
@@ -572,8 +574,11 @@ TEST_CASE("the boundary layer stays inside a thin blade", "[layout_volume][bound
         if(arc.nodes[e] == n) CHECK(depth[n] <= po.maximum_thickness_fraction * t[arc.nodes[1 - e]] * (1. + 1e-9));
   }
   CHECK(escaping > 0);
-  // Along every arc the depth changes by at most 5% of the arc's length.
+  // Along every arc the depth changes by at most 5% of the arc's length, but at a lifted
+  // node (a ridge on purpose).
+  auto lifted = [&](std::size_t n) { return std::find(P.lifted_nodes.begin(), P.lifted_nodes.end(), n) != P.lifted_nodes.end(); };
   for(std::size_t a = 0; a < na; ++a) {
+    if(lifted(L.arcs[a].nodes[0]) || lifted(L.arcs[a].nodes[1])) continue;
     const double length = PI::internal::cumulative_lengths(g.arc_samples[a]).back();
     CHECK(std::abs(depth[L.arcs[a].nodes[0]] - depth[L.arcs[a].nodes[1]]) <= po.maximum_depth_slope * length * (1. + 1e-9));
   }
@@ -623,10 +628,13 @@ TEST_CASE("the boundary layer turns inner arc ends to open flat corners of cores
   const PI::Patch_sampling_options so = small_options(16).sampling;
   const auto C = PI::split_long_cuboids(L, PI::sample_layout_patches(L, so), so);
   const std::size_t nn = C.layout.nodes.size(), na = C.layout.arcs.size();
-  PI::Padding_options off;
+  // The opening alone: a node still folded after it would be lifted (tested below).
+  PI::Padding_options on;
+  on.folded_corner_lift = 1.;
+  PI::Padding_options off = on;
   off.corner_threshold = 0.;
   const PI::Padded_layout<Point> before = PI::pad_layout(C.layout, C.samples, off);
-  const PI::Padded_layout<Point> after = PI::pad_layout(C.layout, C.samples);
+  const PI::Padded_layout<Point> after = PI::pad_layout(C.layout, C.samples, on);
   PI::internal::Corner_tangents<Layout> T0(before.layout, before.samples.arc_samples, nn),
     T1(after.layout, after.samples.arc_samples, nn);
   int flat_before = 0, flat_after = 0, raised = 0;
@@ -675,17 +683,61 @@ TEST_CASE("the boundary layer turns inner arc ends to open flat corners of cores
     for(int i = 0; i <= N; ++i) CHECK(g(i, 0) == arc0[std::size_t(forward ? i : N - i)]);
   }
   // Options out of range are named, not used.
-  for(int k = 0; k < 3; ++k) {
+  for(int k = 0; k < 5; ++k) {
     PI::Padding_options bad;
     if(k == 0) bad.inner_relief = std::numeric_limits<double>::quiet_NaN();
     if(k == 1) bad.maximum_corner_turn = 120.;
     if(k == 2) bad.corner_threshold = -1.;
+    if(k == 3) bad.folded_corner_lift = 0.;
+    if(k == 4) bad.folded_corner_lift = 1.5;
     CHECK_THROWS_AS(PI::pad_layout(C.layout, C.samples, bad), PI::Invalid_input_error);
   }
   // Deterministic.
-  const PI::Padded_layout<Point> again = PI::pad_layout(C.layout, C.samples);
+  const PI::Padded_layout<Point> again = PI::pad_layout(C.layout, C.samples, on);
   CHECK(again.samples.arc_samples == after.samples.arc_samples);
   for(std::size_t p = 0; p < again.samples.grids.size(); ++p) CHECK(again.samples.grids[p].points == after.samples.grids[p].points);
+}
+
+TEST_CASE("the boundary layer lifts an inner node whose corner stays folded", "[layout_volume][boundary_layer]")
+{
+  // mech-holes-shark.off after node relocation, at 20 samples: node 14 sits on the rim of
+  // a hole in a flat face, flush with its cap, and the core's corner under it stays folded
+  // after the opening; the whole build is valid only with it lifted (--relocate-nodes 2
+  // --grid 20).
+  const Mesh m = load(data("mech-holes-shark.off"));
+  Layout L = PI::Cuboid_decomposition<Mesh>()(m);
+  PI::relocate_layout_nodes(L, 2);
+  const PI::Patch_sampling_options so = small_options(20).sampling;
+  const auto C = PI::split_long_cuboids(L, PI::sample_layout_patches(L, so), so);
+  const std::size_t nn = C.layout.nodes.size(), na = C.layout.arcs.size();
+  PI::Padding_options unlifted;
+  unlifted.folded_corner_lift = 1.;
+  const PI::Padded_layout<Point> P0 = PI::pad_layout(C.layout, C.samples, unlifted);
+  const PI::Padded_layout<Point> P = PI::pad_layout(C.layout, C.samples);
+  CHECK(P0.lifted_nodes.empty());
+  REQUIRE(!P.lifted_nodes.empty());
+  PI::internal::Corner_tangents<Layout> T0(P0.layout, P0.samples.arc_samples, nn), T(P.layout, P.samples.arc_samples, nn);
+  // The radial arc of node n runs from it to its inner node.
+  auto depth = [&](const PI::Padded_layout<Point>& X, std::size_t n) {
+    const auto& s = X.samples.arc_samples[2 * na + n];
+    return (s.back() - s.front()).norm();
+  };
+  bool rim_node_lifted = false;
+  for(std::size_t n = 0; n < nn; ++n) {
+    const bool lifted = std::find(P.lifted_nodes.begin(), P.lifted_nodes.end(), n) != P.lifted_nodes.end();
+    INFO("node " << n << ": worst corner " << T0.worst(nn + n) << " -> " << T.worst(nn + n) << ", depth " << depth(P0, n) << " -> "
+                 << depth(P, n));
+    if(lifted) {
+      CHECK(T0.worst(nn + n) < 0.);                 // only folded corners
+      CHECK(T.worst(nn + n) > T0.worst(nn + n));    // and only where that raises them
+      CHECK(depth(P, n) == Approx(PI::Padding_options().folded_corner_lift * depth(P0, n)).epsilon(1e-9));
+      rim_node_lifted = rim_node_lifted || bool(CGAL::is_border(C.layout.nodes[n], C.layout.mesh));
+    } else
+      CHECK(P.samples.arc_samples[2 * na + n] == P0.samples.arc_samples[2 * na + n]);
+  }
+  CHECK(rim_node_lifted);
+  // Deterministic.
+  CHECK(PI::pad_layout(C.layout, C.samples).samples.arc_samples == P.samples.arc_samples);
 }
 
 TEST_CASE("cuboid handedness read from the mesh's orientation agrees with the geometry of sound cuboids", "[layout_volume][boundary_layer]")

@@ -24,7 +24,9 @@
 //     a', closed by the straight radial segments n -> n';
 //   * where a core or slab corner at an inner node is flat or folded (its three edge
 //     tangents nearly coplanar: a node on the smooth middle of an interface's cycle), the
-//     inner arcs' ends there are turned towards their chords (open_inner_corners());
+//     inner arcs' ends there are turned towards their chords (open_inner_corners()); one
+//     still folded (a node amid a flat face, whose inner arcs all leave in one plane) is
+//     lifted to half its depth, so that its faces meet at a ridge there;
 //   * every patch p gets an inner patch p' spanned by the inner arcs of its sides (the
 //     discrete Coons patch of its border plus a quarter of p's own relief over its Coons
 //     patch);
@@ -77,7 +79,8 @@ struct Padding_options
   /// At most this fraction of the solid's thickness below the node (the distance to the
   /// mesh along the inward normal); 0 disables the cap.
   double maximum_thickness_fraction = 1. / 3.;
-  /// Along an arc, the depth changes by at most this fraction of the arc's length.
+  /// Along an arc, the depth changes by at most this fraction of the arc's length (but at
+  /// a node lifted by folded_corner_lift).
   double maximum_depth_slope = 0.05;
   /// Where a core or slab corner at an inner node has a scaled det (of its three edge
   /// tangents) below this, the inner arcs' end tangents there are turned to raise the
@@ -88,6 +91,9 @@ struct Padding_options
   /// An inner patch is the Coons patch of its inner arcs plus this fraction of its outer
   /// patch's relief (the outer grid minus the Coons patch of its own border).
   double inner_relief = 0.25;
+  /// An inner node whose worst corner is still folded after the corners are opened is placed
+  /// at this fraction of its depth, where that raises the corner (pad_layout()); 1: never.
+  double folded_corner_lift = 0.5;
 };
 
 /// A padded layout: the layout of cores and slabs, its grids, and where each cuboid came from.
@@ -100,6 +106,8 @@ struct Padded_layout
   std::vector<long> core_of;
   /// Per cuboid of `layout`: the SURFACE patch of the original layout it is the slab of, or -1.
   std::vector<long> slab_of;
+  /// The nodes whose inner node was lifted (Padding_options::folded_corner_lift), in order.
+  std::vector<std::size_t> lifted_nodes;
 };
 
 namespace internal {
@@ -441,9 +449,9 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
   if(!(o.thickness > 0. && o.thickness < 0.5))
     throw Invalid_input_error("invalid_parameter", "the boundary layer thickness must lie in (0, 0.5)");
   if(!(o.corner_threshold >= 0. && o.corner_threshold <= 1.) || !(o.maximum_corner_turn >= 0. && o.maximum_corner_turn <= 90.) ||
-     !(o.inner_relief >= 0. && o.inner_relief <= 1.))
-    throw Invalid_input_error("invalid_parameter",
-                              "the boundary layer's corner_threshold and inner_relief must lie in [0, 1], its maximum_corner_turn in [0, 90] degrees");
+     !(o.inner_relief >= 0. && o.inner_relief <= 1.) || !(o.folded_corner_lift > 0. && o.folded_corner_lift <= 1.))
+    throw Invalid_input_error("invalid_parameter", "the boundary layer's corner_threshold and inner_relief must lie in [0, 1], its "
+                                                   "folded_corner_lift in (0, 1], its maximum_corner_turn in [0, 90] degrees");
 
   // Outward normals at the nodes, from the SURFACE grids (their u x v points out of the
   // solid, Patch_sampling.h): sums of the unit normals at the corners of the surface
@@ -527,7 +535,6 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
       }
     }
   }
-  for(std::size_t n = 0; n < nn; ++n) inner[n] = outer[n] - depth[n] * node_normal[n];
 
   Padded_layout<Point_3> r;
   Layout& L = r.layout;
@@ -543,56 +550,67 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
   L.nodes = layout.nodes;
   L.nodes.insert(L.nodes.end(), layout.nodes.begin(), layout.nodes.end());
 
-  // Arcs: the layout's (0..na-1), inner (na + a), radial n -> n' (2na + n).
+  // Arcs: the layout's (0..na-1), inner (na + a), radial n -> n' (2na + n); their samples
+  // are placed below, once the cuboids are known.
   L.arcs = layout.arcs;
-  G.arc_samples = samples.arc_samples;
   for(std::size_t a = 0; a < na; ++a) {
-    const auto& arc = layout.arcs[a];
     typename Layout::Arc in;
-    in.nodes = {{nn + arc.nodes[0], nn + arc.nodes[1]}};
+    in.nodes = {{nn + layout.arcs[a].nodes[0], nn + layout.arcs[a].nodes[1]}};
     L.arcs.push_back(in);
-    // The inner arc is the chord of its inner nodes plus half the outer arc's deviation from
-    // its own chord: straight arcs stay straight (a flat face stays flat), and a round
-    // cross-section's inner arcs are half as round, so the core gets real corners there.
-    // (Offsetting each sample along its normal makes a box's core edges reflex; keeping the
-    // full curvature, as an offset circle does, leaves the core's cross-section corners at
-    // about 180 degrees: the torus turned invalid on a finer mesh of the same shape.)
-    // An arc that bulges into the solid (around a hole) by more than the layer is deep would,
-    // with half its bulge, have an inner arc that cuts across the hole, and the slab under it
-    // would lie outside the solid. It keeps enough of its bulge (sagitta s, depth d: a
-    // fraction 1 - d / 2s) for its inner arc to stay at least d/2 below it; shallow
-    // bulges keep half, like convex arcs (all of a shallow one spoils the torus' core).
-    const Eigen::Vector3d arc_normal =
-      (node_normal[arc.nodes[0]].normalized() + node_normal[arc.nodes[1]].normalized()).normalized();
-    double sagitta = 0.;
-    for(int k = 1; k < N; ++k) {
-      const double t = double(k) / N;
-      const Eigen::Vector3d chord_out = (1. - t) * outer[arc.nodes[0]] + t * outer[arc.nodes[1]];
-      sagitta = std::max(sagitta, -(samples.arc_samples[a][std::size_t(k)] - chord_out).dot(arc_normal));
-    }
-    const double arc_depth = std::min(depth[arc.nodes[0]], depth[arc.nodes[1]]);
-    const double kept = sagitta > arc_depth ? 1. - arc_depth / (2. * sagitta) : 0.5;
-    std::vector<Eigen::Vector3d> s(samples.arc_samples[a]);
-    for(int k = 1; k < N; ++k) {
-      const double t = double(k) / N;
-      const Eigen::Vector3d chord_out = (1. - t) * outer[arc.nodes[0]] + t * outer[arc.nodes[1]];
-      const Eigen::Vector3d chord_in = (1. - t) * inner[arc.nodes[0]] + t * inner[arc.nodes[1]];
-      s[std::size_t(k)] = chord_in + kept * (samples.arc_samples[a][std::size_t(k)] - chord_out);
-    }
-    s.front() = inner[arc.nodes[0]];
-    s.back() = inner[arc.nodes[1]];
-    G.arc_samples.push_back(std::move(s));
   }
   for(std::size_t n = 0; n < nn; ++n) {
     typename Layout::Arc radial;
     radial.nodes = {{n, nn + n}};
     L.arcs.push_back(radial);
-    std::vector<Eigen::Vector3d> s(std::size_t(N + 1));
-    for(int k = 0; k <= N; ++k) s[std::size_t(k)] = outer[n] + (double(k) / N) * (inner[n] - outer[n]);
-    s.front() = outer[n];
-    s.back() = inner[n];
-    G.arc_samples.push_back(std::move(s));
   }
+  // The samples of every arc for the inner nodes at `d` below their outer nodes, the
+  // corners at inner nodes opened (open_inner_corners()).
+  auto place_arcs = [&](const std::vector<double>& d) {
+    for(std::size_t n = 0; n < nn; ++n) inner[n] = outer[n] - d[n] * node_normal[n];
+    G.arc_samples = samples.arc_samples;
+    for(std::size_t a = 0; a < na; ++a) {
+      const auto& arc = layout.arcs[a];
+      // The inner arc is the chord of its inner nodes plus half the outer arc's deviation from
+      // its own chord: straight arcs stay straight (a flat face stays flat), and a round
+      // cross-section's inner arcs are half as round, so the core gets real corners there.
+      // (Offsetting each sample along its normal makes a box's core edges reflex; keeping the
+      // full curvature, as an offset circle does, leaves the core's cross-section corners at
+      // about 180 degrees: the torus turned invalid on a finer mesh of the same shape.)
+      // An arc that bulges into the solid (around a hole) by more than the layer is deep would,
+      // with half its bulge, have an inner arc that cuts across the hole, and the slab under it
+      // would lie outside the solid. It keeps enough of its bulge (sagitta s, depth d: a
+      // fraction 1 - d / 2s) for its inner arc to stay at least d/2 below it; shallow
+      // bulges keep half, like convex arcs (all of a shallow one spoils the torus' core).
+      const Eigen::Vector3d arc_normal =
+        (node_normal[arc.nodes[0]].normalized() + node_normal[arc.nodes[1]].normalized()).normalized();
+      double sagitta = 0.;
+      for(int k = 1; k < N; ++k) {
+        const double t = double(k) / N;
+        const Eigen::Vector3d chord_out = (1. - t) * outer[arc.nodes[0]] + t * outer[arc.nodes[1]];
+        sagitta = std::max(sagitta, -(samples.arc_samples[a][std::size_t(k)] - chord_out).dot(arc_normal));
+      }
+      const double arc_depth = std::min(d[arc.nodes[0]], d[arc.nodes[1]]);
+      const double kept = sagitta > arc_depth ? 1. - arc_depth / (2. * sagitta) : 0.5;
+      std::vector<Eigen::Vector3d> s(samples.arc_samples[a]);
+      for(int k = 1; k < N; ++k) {
+        const double t = double(k) / N;
+        const Eigen::Vector3d chord_out = (1. - t) * outer[arc.nodes[0]] + t * outer[arc.nodes[1]];
+        const Eigen::Vector3d chord_in = (1. - t) * inner[arc.nodes[0]] + t * inner[arc.nodes[1]];
+        s[std::size_t(k)] = chord_in + kept * (samples.arc_samples[a][std::size_t(k)] - chord_out);
+      }
+      s.front() = inner[arc.nodes[0]];
+      s.back() = inner[arc.nodes[1]];
+      G.arc_samples.push_back(std::move(s));
+    }
+    for(std::size_t n = 0; n < nn; ++n) {
+      std::vector<Eigen::Vector3d> s(std::size_t(N + 1));
+      for(int k = 0; k <= N; ++k) s[std::size_t(k)] = outer[n] + (double(k) / N) * (inner[n] - outer[n]);
+      s.front() = outer[n];
+      s.back() = inner[n];
+      G.arc_samples.push_back(std::move(s));
+    }
+    if(o.corner_threshold > 0.) internal::open_inner_corners(L, G.arc_samples, na, nn, o.corner_threshold, o.maximum_corner_turn);
+  };
 
   // Patches: the layout's (0..np-1, only the SURFACE ones stay in use), inner (np + p),
   // walls (2np + a); the grids of the new ones are filled once their arcs are final (below).
@@ -648,7 +666,32 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
     r.slab_of.push_back(long(p));
   }
 
-  if(o.corner_threshold > 0.) internal::open_inner_corners(L, G.arc_samples, na, nn, o.corner_threshold, o.maximum_corner_turn);
+  place_arcs(depth);
+  // An inner node whose corner stays folded after opening (shark: a rim node amid a flat
+  // face, flush with its hole's cap, so the core's cap and side faces are coplanar there and
+  // its three inner arcs leave in one plane) is lifted: at a fraction of its depth it becomes
+  // a ridge between those faces. Kept per node only where its worst corner rises.
+  if(o.folded_corner_lift < 1.) {
+    internal::Corner_tangents<Layout> before(L, G.arc_samples, nn);
+    std::vector<double> lifted = depth;
+    for(std::size_t n = 0; n < nn; ++n)
+      if(before.has_corners(nn + n) && before.worst(nn + n) < 0.) {
+        lifted[n] *= o.folded_corner_lift;
+        r.lifted_nodes.push_back(n);
+      }
+    if(!r.lifted_nodes.empty()) {
+      place_arcs(lifted);
+      internal::Corner_tangents<Layout> after(L, G.arc_samples, nn);
+      std::vector<std::size_t> kept;
+      for(std::size_t n : r.lifted_nodes)
+        if(after.worst(nn + n) > before.worst(nn + n))
+          kept.push_back(n);
+        else
+          lifted[n] = depth[n];
+      if(kept.size() < r.lifted_nodes.size()) place_arcs(lifted);
+      r.lifted_nodes = std::move(kept);
+    }
+  }
   // Inner patches and walls: the Coons patches of their (final) border samples. Not
   // harmonic: a uniform grid Laplacian treats a long thin wall as a square and pulls its
   // middle towards the chord, out of the layer. An inner patch adds a fraction of its outer
