@@ -66,6 +66,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace CGAL {
@@ -672,24 +673,26 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
   // its three inner arcs leave in one plane) is lifted: at a fraction of its depth it becomes
   // a ridge between those faces. Kept per node only where its worst corner rises.
   if(o.folded_corner_lift < 1.) {
-    internal::Corner_tangents<Layout> before(L, G.arc_samples, nn);
+    internal::Corner_tangents<Layout> opened(L, G.arc_samples, nn);
+    std::vector<std::pair<std::size_t, double>> folded; // node, its worst corner as opened
     std::vector<double> lifted = depth;
     for(std::size_t n = 0; n < nn; ++n)
-      if(before.has_corners(nn + n) && before.worst(nn + n) < 0.) {
-        lifted[n] *= o.folded_corner_lift;
-        r.lifted_nodes.push_back(n);
+      if(opened.has_corners(nn + n)) {
+        const double w = opened.worst(nn + n);
+        if(w < 0.) {
+          folded.emplace_back(n, w);
+          lifted[n] *= o.folded_corner_lift;
+        }
       }
-    if(!r.lifted_nodes.empty()) {
+    if(!folded.empty()) {
       place_arcs(lifted);
       internal::Corner_tangents<Layout> after(L, G.arc_samples, nn);
-      std::vector<std::size_t> kept;
-      for(std::size_t n : r.lifted_nodes)
-        if(after.worst(nn + n) > before.worst(nn + n))
-          kept.push_back(n);
+      for(const auto& [n, w] : folded)
+        if(after.worst(nn + n) > w)
+          r.lifted_nodes.push_back(n);
         else
           lifted[n] = depth[n];
-      if(kept.size() < r.lifted_nodes.size()) place_arcs(lifted);
-      r.lifted_nodes = std::move(kept);
+      if(r.lifted_nodes.size() < folded.size()) place_arcs(lifted);
     }
   }
   // Inner patches and walls: the Coons patches of their (final) border samples. Not
