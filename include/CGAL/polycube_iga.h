@@ -207,6 +207,10 @@ struct Trivariate_model
   Arc_relaxation_result arc_relaxation;
   /// What the node relocation did (see `node_relocation_sweeps` in build_trivariate_model()).
   Node_relocation_result node_relocation;
+  /// True when the volume on the decomposition's own nodes was not valid and the layout was
+  /// built again with its nodes relocated (see `node_relocation_retry` in
+  /// build_trivariate_model()); `node_relocation.nodes_moved` is 0 if that was not kept.
+  bool relocation_retried = false;
 
   /// True when every patch's det J is certified positive and the boundary is within
   /// `maximum_boundary_distance` of the mesh.
@@ -221,6 +225,8 @@ struct Layout_variant
 {
   double belt_phase = 0.;
   bool corners_off_steps = false;
+  /// Sweeps of relocate_layout_nodes(); -1: the `node_relocation_sweeps` named parameter.
+  int node_relocation_sweeps = -1;
 };
 
 /// Appends `from`'s stage seconds to `to`, each name followed by `suffix`.
@@ -286,8 +292,9 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
   if(stretch_rounds < 0) throw Invalid_input_error("invalid_parameter", "stretch_rounds must not be negative");
   const int arc_sweeps = int(option(np, internal_np::arc_relaxation_sweeps, 0));
   if(arc_sweeps < 0) throw Invalid_input_error("invalid_parameter", "arc_relaxation_sweeps must not be negative");
-  const int node_sweeps = int(option(np, internal_np::node_relocation_sweeps, 0));
-  if(node_sweeps < 0) throw Invalid_input_error("invalid_parameter", "node_relocation_sweeps must not be negative");
+  const int asked_node_sweeps = int(option(np, internal_np::node_relocation_sweeps, 0));
+  if(asked_node_sweeps < 0) throw Invalid_input_error("invalid_parameter", "node_relocation_sweeps must not be negative");
+  const int node_sweeps = variant.node_relocation_sweeps >= 0 ? variant.node_relocation_sweeps : asked_node_sweeps;
   const int missing_part_cubes = int(option(np, internal_np::missing_part_cubes, 2));
   if(missing_part_cubes < 0) throw Invalid_input_error("invalid_parameter", "missing_part_cubes must not be negative");
   Surface_topology_result<TriangleMesh> topology;
@@ -303,9 +310,10 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
                                          .corners_off_steps(variant.corners_off_steps)
                                          .cut_pair_trials(option(np, internal_np::cut_pair_trials, default_cut_pair_trials)));
   });
-  if(unless_nodes && node_points(model.layout) == *unless_nodes) return std::nullopt;
   if(node_sweeps > 0)
     stage("node relocation", [&] { model.node_relocation = relocate_layout_nodes(model.layout, node_sweeps); });
+  if(unless_nodes && node_points(model.layout) == *unless_nodes) return std::nullopt;
+  if(variant.node_relocation_sweeps > 0 && model.node_relocation.nodes_moved == 0) return std::nullopt;
   if(arc_sweeps > 0)
     stage("arc relaxation", [&] { model.arc_relaxation = relax_layout_arcs(model.layout, arc_sweeps); });
   if(model.layout.turned_outwards)
@@ -564,6 +572,12 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
   };
   for(int N = 2 * first_grid; N <= maximum_grid && worth_retrying(); N *= 2)
     if(!retry_on_grid(N, volume_options.degree)) break;
+  // Then the smallest step up: one more span per side (4 more samples; spans are N / 4).
+  // Validity is not monotone in the grid: where the first grid's faces miss a spike and the
+  // doubled grid's, with twice the spans, fold over a crease, one span more may do neither
+  // (mech-holes-shark.off after node relocation: valid at 20 samples, not at 16, 24 or 32).
+  if(const int N = first_grid + 4; N <= maximum_grid && N != 2 * first_grid && worth_retrying())
+    retry_on_grid(N, volume_options.degree);
   for(int N = first_grid / 2; N >= minimum_grid && worth_retrying(); N /= 2)
     if(!retry_on_grid(N, volume_options.degree)) break;
   // Still invalid: lower degrees, down to minimum_spline_degree, on the first grid and the
@@ -644,57 +658,11 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
   return model;
 }
 
-} // namespace internal
-
-/// \ingroup PkgPolycubeIGARef
-/// Runs the whole chain. `progress`, when set, is told the name of each stage as it starts.
-/// Named parameters: those of Surface_topology, Pants_decomposition, Cuboid_decomposition
-/// and layout_volume() (grid_resolution, spline_degree, number_of_spans, boundary_layer
-/// (default 0.25 here; 0 for one volume patch per cuboid), maximum_cuboid_aspect (2 here),
-/// untangle_volume (true here), ...), `maximum_refinements` (the cuboid stage's, default 2),
-/// `maximum_boundary_distance` (0.02: the model is
-/// not valid when its boundary is farther from the mesh than this fraction of the mesh's
-/// bounding-box diagonal) and `maximum_grid_resolution` (twice grid_resolution: an invalid
-/// volume is rebuilt on grids twice as fine up to this; equal to grid_resolution, never) and
-/// `minimum_grid_resolution` (half grid_resolution if that is 8 or more, else
-/// grid_resolution: a volume still invalid is then rebuilt on grids half as fine down to this).
-/// `minimum_spline_degree` (2, or spline_degree if lower): a volume still invalid is then
-/// rebuilt at each lower degree down to this, on the first grid and the coarser ones down to
-/// `minimum_grid_resolution`; equal to spline_degree, never. `degree_attempts` and
-/// `volume.degree` say which degree was kept.
-/// `grid_relaxation_sweeps` (100) and `stretch_rounds` (3) are those of the second and third
-/// attempts: relaxed surface grids when the first volume is invalid, stretch-reduced patch
-/// maps when the volume is then too far from the mesh (0: no such attempt). The finer grids
-/// combine those of the two that served their ends (the stretch with four times the rounds
-/// per doubling). `untangle_invalid_result` (true): when no grid gives a valid volume and the
-/// first one cannot become valid by untangling (boundary too far or turned over), untangle it
-/// all the same, for the best invalid result; false returns it as built, sooner (the CLI does
-/// so unless `--allow-invalid`, since it writes no invalid volume).
-/// `belt_phases` (4, at most 8): a closed genus-0 surface whose volume is not valid is built
-/// again on layouts whose belt nodes are moved by 1/8, 2/8, ... of the zigzag's period
-/// (Cuboid_decomposition's `belt_phase`), and the first valid one is kept; 1: never.
-/// `step_retry` (true): a cylinder whose volume is not valid is built again with its section
-/// corners moved off the steps of its cut ends (`corners_off_steps`), when that moves any,
-/// and that volume is kept if it is valid.
-/// `arc_relaxation_sweeps` (0): sweeps of relax_layout_arcs() on every layout before its
-/// volume is built (Layout_arc_relaxation.h): corners nearer right angles (anchor.off: mean
-/// deviation 42 -> 33 degrees at 3 sweeps), so far without a volume that becomes valid.
-/// `node_relocation_sweeps` (0): sweeps of relocate_layout_nodes() on every layout before its
-/// volume is built, and before the arc relaxation (Layout_node_relocation.h): nodes moved in
-/// the union of their patches, or along their hole's rim, where their corners come nearer
-/// right angles (mean deviation joint.off 52 -> 31 degrees, mech-holes-shark.off 36 -> 21,
-/// whose volume then leaves 2 of 38 patches uncertified instead of 8), so far without a
-/// volume that becomes valid.
-/// `missing_part_cubes` (2): when the first volume misses a part of the shape (a mesh point
-/// far from it while all of it is near the mesh: a protrusion that a patch's map to the
-/// square shrinks), that patch gets a cube of its own, its bottom around the farthest point
-/// (Cuboid_decomposition::with_cube_under()), and the volume is built again; kept if its
-/// boundary comes closer, up to this many times; 0: never. `missing_part_cubes` of the
-/// model counts those kept.
-/// Throws the stages' errors; an invalid layout becomes Internal_error("invalid_layout").
-template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
-auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values(),
-                            const std::function<void(const std::string&)>& progress = {})
+/// build_trivariate_model() up to the node relocation retry: the first layout and the
+/// variants of its class (belt phases, corners off steps).
+template <class TriangleMesh, class NamedParameters>
+auto build_with_class_variants(const TriangleMesh& tm, const NamedParameters& np,
+                               const std::function<void(const std::string&)>& progress)
 {
   const int phases = int(option(np, internal_np::belt_phases, 4));
   if(phases < 1 || phases > 8) throw Invalid_input_error("invalid_parameter", "belt_phases must be from 1 to 8");
@@ -762,6 +730,103 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   if(!tried.empty())
     model.warnings.push_back("belt phases " + internal::comma_list(tried) + " of the zigzag's period were tried too and gave no valid volume");
   model.stage_seconds = std::move(seconds);
+  return model;
+}
+
+} // namespace internal
+
+/// \ingroup PkgPolycubeIGARef
+/// Runs the whole chain. `progress`, when set, is told the name of each stage as it starts.
+/// Named parameters: those of Surface_topology, Pants_decomposition, Cuboid_decomposition
+/// and layout_volume() (grid_resolution, spline_degree, number_of_spans, boundary_layer
+/// (default 0.25 here; 0 for one volume patch per cuboid), maximum_cuboid_aspect (2 here),
+/// untangle_volume (true here), ...), `maximum_refinements` (the cuboid stage's, default 2),
+/// `maximum_boundary_distance` (0.02: the model is
+/// not valid when its boundary is farther from the mesh than this fraction of the mesh's
+/// bounding-box diagonal) and `maximum_grid_resolution` (twice grid_resolution: an invalid
+/// volume is rebuilt on grids twice as fine up to this, then on one with 4 more samples
+/// (one more span) if this allows it; equal to grid_resolution, never) and
+/// `minimum_grid_resolution` (half grid_resolution if that is 8 or more, else
+/// grid_resolution: a volume still invalid is then rebuilt on grids half as fine down to this).
+/// `minimum_spline_degree` (2, or spline_degree if lower): a volume still invalid is then
+/// rebuilt at each lower degree down to this, on the first grid and the coarser ones down to
+/// `minimum_grid_resolution`; equal to spline_degree, never. `degree_attempts` and
+/// `volume.degree` say which degree was kept.
+/// `grid_relaxation_sweeps` (100) and `stretch_rounds` (3) are those of the second and third
+/// attempts: relaxed surface grids when the first volume is invalid, stretch-reduced patch
+/// maps when the volume is then too far from the mesh (0: no such attempt). The finer grids
+/// combine those of the two that served their ends (the stretch with four times the rounds
+/// per doubling). `untangle_invalid_result` (true): when no grid gives a valid volume and the
+/// first one cannot become valid by untangling (boundary too far or turned over), untangle it
+/// all the same, for the best invalid result; false returns it as built, sooner (the CLI does
+/// so unless `--allow-invalid`, since it writes no invalid volume).
+/// `belt_phases` (4, at most 8): a closed genus-0 surface whose volume is not valid is built
+/// again on layouts whose belt nodes are moved by 1/8, 2/8, ... of the zigzag's period
+/// (Cuboid_decomposition's `belt_phase`), and the first valid one is kept; 1: never.
+/// `step_retry` (true): a cylinder whose volume is not valid is built again with its section
+/// corners moved off the steps of its cut ends (`corners_off_steps`), when that moves any,
+/// and that volume is kept if it is valid.
+/// `arc_relaxation_sweeps` (0): sweeps of relax_layout_arcs() on every layout before its
+/// volume is built (Layout_arc_relaxation.h): corners nearer right angles (anchor.off: mean
+/// deviation 42 -> 33 degrees at 3 sweeps), so far without a volume that becomes valid.
+/// `node_relocation_sweeps` (0): sweeps of relocate_layout_nodes() on every layout before its
+/// volume is built, and before the arc relaxation (Layout_node_relocation.h): nodes moved in
+/// the union of their patches, or along their hole's rim, where their corners come nearer
+/// right angles (mean deviation joint.off 52 -> 31 degrees, mech-holes-shark.off 36 -> 21).
+/// `node_relocation_retry` (2): when node_relocation_sweeps is 0 and no volume above is
+/// valid, the first layout is built again with this many sweeps of node relocation, through
+/// the same grids and degrees, and kept if its volume is valid (mech-holes-shark.off: valid
+/// at 20 samples); 0: never. `relocation_retried` of the model says it was tried.
+/// `missing_part_cubes` (2): when the first volume misses a part of the shape (a mesh point
+/// far from it while all of it is near the mesh: a protrusion that a patch's map to the
+/// square shrinks), that patch gets a cube of its own, its bottom around the farthest point
+/// (Cuboid_decomposition::with_cube_under()), and the volume is built again; kept if its
+/// boundary comes closer, up to this many times; 0: never. `missing_part_cubes` of the
+/// model counts those kept.
+/// Throws the stages' errors; an invalid layout becomes Internal_error("invalid_layout").
+template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
+auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values(),
+                            const std::function<void(const std::string&)>& progress = {})
+{
+  const int retry_sweeps = int(option(np, internal_np::node_relocation_retry, 2));
+  if(retry_sweeps < 0) throw Invalid_input_error("invalid_parameter", "node_relocation_retry must not be negative");
+  auto model = internal::build_with_class_variants(tm, np, progress);
+  if(model.is_valid() || retry_sweeps == 0 || option(np, internal_np::node_relocation_sweeps, 0) > 0) return model;
+  // The decomposition puts nodes where the harmonic cuts and the conformal map say, blind to
+  // the corners they make; a node amid a flat face or a spoke along a rim folds a face
+  // (mech-holes-shark.off: 8 of 38 patches uncertified on its own nodes; relocated, valid).
+  // Last, since it moves the nodes of layouts that are valid as they are (blade.off's rim
+  // corners sit off the steps of its cut ends on purpose).
+  model.relocation_retried = true;
+  internal::Layout_variant relocated;
+  relocated.node_relocation_sweeps = retry_sweeps;
+  std::optional<std::decay_t<decltype(model)>> other;
+  try {
+    other = internal::build_on_layout(tm, np, progress, relocated, false, false, nullptr);
+  } catch(const Error& e) {
+    model.warnings.push_back("relocating the layout's nodes failed: " + e.reason() + ": " + e.what());
+    return model;
+  }
+  if(!other) {
+    model.warnings.push_back("node relocation was tried too and moved no node");
+    return model;
+  }
+  if(other->is_valid()) {
+    other->relocation_retried = true;
+    other->warnings.insert(other->warnings.begin(), "the layout's nodes are relocated (" +
+                                                      std::to_string(other->node_relocation.nodes_moved) +
+                                                      " moves): on the decomposition's own nodes the volume was not valid (" +
+                                                      internal::comma_list(model.invalidity_reasons()) + ")");
+    std::vector<std::pair<std::string, double>> seconds;
+    internal::append_stage_seconds(seconds, model.stage_seconds, ", own nodes");
+    seconds.insert(seconds.end(), other->stage_seconds.begin(), other->stage_seconds.end());
+    other->stage_seconds = std::move(seconds);
+    return std::move(*other);
+  }
+  internal::append_stage_seconds(model.stage_seconds, other->stage_seconds, ", nodes relocated");
+  model.warnings.push_back("the layout's nodes relocated (" + std::to_string(other->node_relocation.nodes_moved) +
+                           " moves) were tried too and gave no valid volume (" +
+                           internal::comma_list(other->invalidity_reasons()) + ")");
   return model;
 }
 

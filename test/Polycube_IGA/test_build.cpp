@@ -266,10 +266,11 @@ TEST_CASE("build gives a certified valid volume for a disk, on a finer grid when
   // mushroom.off: one cube, capped by its boundary loop, whose sides climb the stem and
   // wrap the head (a chain of 2 along its bend). At 8 samples per side its boundary is 2.05%
   // of the diagonal from the mesh; without stretch-reduced maps the build retries at 16 (one
-  // doubling by default), which is valid, and says so.
+  // doubling by default), which is valid, and says so. (Relocated nodes make it valid at 8
+  // too: see the node relocation retry's test; not here.)
   const Mesh m = load(data("mushroom.off"));
-  const auto once =
-    PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).maximum_grid_resolution(8).stretch_rounds(0).minimum_spline_degree(3));
+  const auto once = PI::build_trivariate_model(
+    m, PI::parameters::grid_resolution(8).maximum_grid_resolution(8).stretch_rounds(0).minimum_spline_degree(3).node_relocation_retry(0));
   CHECK(once.layout.layout_class == PI::Layout_class::disk);
   CHECK(once.grid_attempts == std::vector<int>{8});
   CHECK_FALSE(once.is_valid());
@@ -290,6 +291,45 @@ TEST_CASE("build gives a certified valid volume for a disk, on a finer grid when
   // Deterministic, retry included.
   const auto again = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).stretch_rounds(0));
   CHECK(again.volume.volume.patch(0).control_points() == model.volume.volume.patch(0).control_points());
+}
+
+TEST_CASE("build relocates the layout nodes when no volume on the decomposition nodes is valid", "[build][relocation]")
+{
+  // mushroom.off on one grid of 8 with plain mean-value maps: on the decomposition's own
+  // nodes every patch is certified but the boundary is 2.05% of the diagonal from the mesh;
+  // with one node relocated (Layout_node_relocation.h) it is 1.98%, and the volume valid.
+  const Mesh m = load(data("mushroom.off"));
+  const auto one_grid = PI::parameters::grid_resolution(8).maximum_grid_resolution(8).stretch_rounds(0).minimum_spline_degree(3);
+  const auto own = PI::build_trivariate_model(m, one_grid.node_relocation_retry(0));
+  CHECK_FALSE(own.is_valid());
+  CHECK_FALSE(own.relocation_retried);
+  CHECK(own.node_relocation.nodes_moved == 0);
+  std::vector<std::string> stages;
+  const auto model = PI::build_trivariate_model(m, one_grid, [&](const std::string& s) { stages.push_back(s); });
+  CHECK(model.relocation_retried);
+  CHECK(model.node_relocation.nodes_moved >= 1);
+  check_valid_volume(model, 0., 0.02);
+  CHECK(model.volume.distance.relative < own.volume.distance.relative);
+  CHECK(model.grid_attempts == std::vector<int>{8});
+  CHECK(model.layout.validate().is_valid());
+  REQUIRE_FALSE(model.warnings.empty());
+  CHECK(model.warnings.front().find("nodes are relocated") != std::string::npos);
+  CHECK(model.warnings.front().find("(boundary_distance)") != std::string::npos);
+  // The layout is built twice; the first try's stages are listed, named, then the second's.
+  CHECK(std::count(stages.begin(), stages.end(), "cuboid decomposition") == 2);
+  CHECK(std::count(stages.begin(), stages.end(), "node relocation") == 1);
+  std::size_t own_named = 0;
+  for(const auto& s : model.stage_seconds) own_named += s.first.find(", own nodes") != std::string::npos;
+  CHECK(own_named > 0);
+  CHECK(own_named < model.stage_seconds.size());
+  // The same as asking for the relocation from the start, which is then not retried.
+  const auto asked = PI::build_trivariate_model(m, one_grid.node_relocation_sweeps(2));
+  CHECK_FALSE(asked.relocation_retried);
+  CHECK(asked.is_valid());
+  REQUIRE(asked.volume.volume.number_of_patches() == model.volume.volume.number_of_patches());
+  for(std::size_t p = 0; p < model.volume.volume.number_of_patches(); ++p)
+    CHECK(asked.volume.volume.patch(p).control_points() == model.volume.volume.patch(p).control_points());
+  CHECK_THROWS_AS(PI::build_trivariate_model(m, one_grid.node_relocation_retry(-1)), PI::Invalid_input_error);
 }
 
 TEST_CASE("build gives a certified valid volume for a torus", "[build]")
@@ -365,7 +405,7 @@ TEST_CASE("build moves a cylinder's section corners off the steps of its cut end
   REQUIRE(CGAL::IO::read_OFF(in, tube));
   const auto one_grid = PI::parameters::maximum_grid_resolution(16).minimum_grid_resolution(16).grid_relaxation_sweeps(0)
                           .untangle_invalid_result(false);
-  const auto first = PI::build_trivariate_model(tube, one_grid.step_retry(false));
+  const auto first = PI::build_trivariate_model(tube, one_grid.step_retry(false).node_relocation_retry(0));
   REQUIRE(first.layout.layout_class == PI::Layout_class::cylinder);
   CHECK(!first.is_valid());
   CHECK(!first.corners_off_steps);
@@ -581,7 +621,7 @@ TEST_CASE("build moves a femur's belt nodes when its first layout gives no valid
   // corner lies in a hollow (a 224-degree corner) and no grid gives a valid volume; moved by
   // an eighth of the zigzag's period, the volume is valid at 32 samples.
   const Mesh m = load(data("femur_S014.ply"));
-  const auto first = PI::build_trivariate_model(m, PI::parameters::belt_phases(1).untangle_invalid_result(false));
+  const auto first = PI::build_trivariate_model(m, PI::parameters::belt_phases(1).untangle_invalid_result(false).node_relocation_retry(0));
   CHECK_FALSE(first.is_valid());
   CHECK(first.belt_phase == 0.);
   const auto model = PI::build_trivariate_model(m);
@@ -596,8 +636,11 @@ TEST_CASE("build moves a femur's belt nodes when its first layout gives no valid
   CHECK(phase0);
   // On one grid of 16 no phase is valid: the result is phase 0's, and every phase's stages are
   // listed once.
-  const auto none = PI::build_trivariate_model(
-    m, PI::parameters::belt_phases(2).maximum_grid_resolution(16).minimum_grid_resolution(16).untangle_invalid_result(false));
+  const auto none = PI::build_trivariate_model(m, PI::parameters::belt_phases(2)
+                                                    .maximum_grid_resolution(16)
+                                                    .minimum_grid_resolution(16)
+                                                    .untangle_invalid_result(false)
+                                                    .node_relocation_retry(0));
   CHECK_FALSE(none.is_valid());
   CHECK(none.belt_phase == 0.);
   std::set<std::string> names;
@@ -621,9 +664,10 @@ TEST_CASE("build does not untangle a finer grid that cannot become valid, and sa
   const Mesh m = load(data("head.off"));
   std::vector<std::string> stages;
   const auto model =
-    PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).maximum_grid_resolution(16).sharp_boundary_turn(0.).minimum_spline_degree(3),
+    PI::build_trivariate_model(m, PI::parameters::grid_resolution(8).maximum_grid_resolution(16).sharp_boundary_turn(0.).minimum_spline_degree(3).node_relocation_retry(0),
                                [&](const std::string& s) { stages.push_back(s); });
-  REQUIRE(model.grid_attempts == std::vector<int>{8, 16});
+  // 16, then one span more than the first grid (12), which 16 allows.
+  REQUIRE(model.grid_attempts == std::vector<int>{8, 16, 12});
   CHECK_FALSE(model.is_valid());
   CHECK(model.volume.samples.segments == 8);
   CHECK(std::count(stages.begin(), stages.end(), "volume construction, grid 16") == 1);
@@ -637,7 +681,7 @@ TEST_CASE("build does not untangle a finer grid that cannot become valid, and sa
   // then it is returned as built, and a warning says why it was not untangled.
   stages.clear();
   const auto as_built = PI::build_trivariate_model(
-    m, PI::parameters::grid_resolution(8).maximum_grid_resolution(16).sharp_boundary_turn(0.).minimum_spline_degree(3).untangle_invalid_result(false),
+    m, PI::parameters::grid_resolution(8).maximum_grid_resolution(16).sharp_boundary_turn(0.).minimum_spline_degree(3).untangle_invalid_result(false).node_relocation_retry(0),
     [&](const std::string& s) { stages.push_back(s); });
   CHECK(as_built.grid_attempts == model.grid_attempts);
   CHECK_FALSE(as_built.is_valid());
@@ -728,7 +772,8 @@ TEST_CASE("untangling makes the sphere's volume certified valid", "[build][untan
   // inner control points (Volume_untangling.h) repairs it without touching the surface.
   const Mesh m = load(data("sphere.off"));
   // (No relaxed second attempt either: relaxed grids alone make this sphere valid.)
-  const auto plain = PI::build_trivariate_model(m, PI::parameters::untangle_volume(false).maximum_grid_resolution(16).grid_relaxation_sweeps(0));
+  const auto plain = PI::build_trivariate_model(
+    m, PI::parameters::untangle_volume(false).maximum_grid_resolution(16).grid_relaxation_sweeps(0).node_relocation_retry(0));
   // Unrelaxed here too: the default build compares both constructions before untangling
   // and takes the relaxed one, valid as it is.
   const auto model = PI::build_trivariate_model(m, PI::parameters::grid_relaxation_sweeps(0));

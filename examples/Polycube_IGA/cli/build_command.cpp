@@ -112,6 +112,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("corners_off_steps", model.corners_off_steps)
       .member("arcs_relaxed", model.arc_relaxation.arcs_moved)
       .member("nodes_relocated", model.node_relocation.nodes_moved)
+      .member("relocation_retried", model.relocation_retried)
       .member("relaxation_sweeps", V.relaxation.sweeps)
       .member("relaxation_last_move", V.relaxation.last_move)
       .member("valid", reasons.empty())
@@ -213,7 +214,7 @@ int run_build(const Arguments& args)
                       "--no-untangle", "--no-step-retry"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
                       "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--min-degree", "--relax-sweeps", "--stretch-rounds",
-                      "--sharp-boundary-turn", "--belt-phases", "--relax-arcs", "--relocate-nodes", "--cut-pair-trials", "--missing-part-cubes",
+                      "--sharp-boundary-turn", "--belt-phases", "--relax-arcs", "--relocate-nodes", "--relocation-retry", "--cut-pair-trials", "--missing-part-cubes",
                       "--small-handle-length"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
@@ -233,6 +234,7 @@ int run_build(const Arguments& args)
   const int belt_phases = positive_option(a, "--belt-phases", 4, 1, 8);
   const int arc_sweeps = positive_option(a, "--relax-arcs", 0, 0, 100);
   const int node_sweeps = positive_option(a, "--relocate-nodes", 0, 0, 100);
+  const int retry_sweeps = positive_option(a, "--relocation-retry", 2, 0, 100);
   const int pair_trials = positive_option(a, "--cut-pair-trials", PI::default_cut_pair_trials, 1, 1000);
   const int missing_part_cubes = positive_option(a, "--missing-part-cubes", 2, 0, 16);
   const double small_handle_length = fraction_option(a, "--small-handle-length", 0., 0., 0.5);
@@ -261,7 +263,7 @@ int run_build(const Arguments& args)
       .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
       .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid).minimum_spline_degree(min_degree)
       .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn).belt_phases(belt_phases)
-      .step_retry(!a.has("--no-step-retry")).arc_relaxation_sweeps(arc_sweeps).node_relocation_sweeps(node_sweeps).cut_pair_trials(pair_trials)
+      .step_retry(!a.has("--no-step-retry")).arc_relaxation_sweeps(arc_sweeps).node_relocation_sweeps(node_sweeps).node_relocation_retry(retry_sweeps).cut_pair_trials(pair_trials)
       .missing_part_cubes(missing_part_cubes)
       // An invalid volume is not written without --allow-invalid: no time spent improving it.
       .untangle_invalid_result(a.has("--allow-invalid")),
@@ -335,8 +337,8 @@ Register_command build_command("build", {
   "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--max-grid M]\n"
   "                          [--min-grid M] [--min-degree D] [--relax-sweeps S] [--stretch-rounds R]\n"
   "                          [--sharp-boundary-turn D] [--belt-phases K] [--no-step-retry] [--relax-arcs K]\n"
-  "                          [--relocate-nodes K] [--cut-pair-trials K] [--missing-part-cubes K]\n"
-  "                          [--small-handle-length F] [--no-untangle]\n"
+  "                          [--relocate-nodes K] [--relocation-retry K] [--cut-pair-trials K]\n"
+  "                          [--missing-part-cubes K] [--small-handle-length F] [--no-untangle]\n"
   "                          [--allow-invalid]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
@@ -345,8 +347,9 @@ Register_command build_command("build", {
   "  --report R.json   counts, per-patch scaled and certified Jacobians, Hausdorff distance,\n"
   "                    seconds per stage, warnings (written even when the volume is not)\n"
   "  --grid N          samples per patch side (default 16)   --degree P  spline degree (default 3)\n"
-  "  --max-grid M      if the volume is not valid, rebuild it with 2N, 4N, ... samples up to M\n"
-  "                    (default 2N; M = N never retries); the first valid one is written\n"
+  "  --max-grid M      if the volume is not valid, rebuild it with 2N, 4N, ... samples up to M,\n"
+  "                    then N + 4 (one more span) if M allows (default 2N; M = N never\n"
+  "                    retries); the first valid one is written\n"
   "  --min-grid M      if it is still not valid, rebuild it with N/2, N/4, ... samples down to M\n"
   "                    (default N/2 when that is 8 or more, else N: never); fewer spans give\n"
   "                    smoother cuboids with fewer control points to untangle (high genus)\n"
@@ -378,6 +381,9 @@ Register_command build_command("build", {
   "                    union of its patches, re-tracing its arcs, where that brings the corners\n"
   "                    nearer right angles; a node on a boundary loop slides along it\n"
   "                    (default 0: never)\n"
+  "  --relocation-retry K  when --relocate-nodes is 0 and no volume is valid, build the layout\n"
+  "                    again with K sweeps of node relocation and keep it if valid (default 2;\n"
+  "                    0: never)\n"
   "  --cut-pair-trials K  the pants stage traces the cuts around the K most promising pairs of\n"
   "                    holes at each step and takes the most promising one whose cut is within\n"
   "                    10% of the lightest (default 16; 1: the most promising pair alone)\n"

@@ -65,6 +65,7 @@ namespace Polycube_IGA {
   X(step_retry_t, step_retry)                                                       \
   X(arc_relaxation_sweeps_t, arc_relaxation_sweeps)                               \
   X(node_relocation_sweeps_t, node_relocation_sweeps)                             \
+  X(node_relocation_retry_t, node_relocation_retry)                               \
   X(missing_part_cubes_t, missing_part_cubes)
 
 namespace internal_np {
