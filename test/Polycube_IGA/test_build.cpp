@@ -672,6 +672,9 @@ TEST_CASE("build does not untangle a finer grid that cannot become valid, and sa
   CHECK(model.volume.samples.segments == 8);
   CHECK(std::count(stages.begin(), stages.end(), "volume construction, grid 16") == 1);
   CHECK(std::count(stages.begin(), stages.end(), "volume untangling, grid 16") == 0);
+  const auto at_12 = std::find(stages.begin(), stages.end(), "volume construction, grid 12");
+  CHECK(at_12 > std::find(stages.begin(), stages.end(), "volume construction, grid 16"));
+  CHECK(at_12 != stages.end());
   // The first grid, which no untangling makes valid either, is untangled once the other grid
   // has failed too: the best invalid volume, as if it had been untangled first.
   const auto finer = std::find(stages.begin(), stages.end(), "volume construction, grid 16");
