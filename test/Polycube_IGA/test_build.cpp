@@ -17,6 +17,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -249,7 +250,8 @@ TEST_CASE("build CLI rejects bad input and bad options without writing", "[build
     {"--grid 16 --min-grid 32", "--min-grid"},
     {"--degree 2 --min-degree 3", "--min-degree"},
     {"--missing-part-cubes 17", "--missing-part-cubes"},
-    {"--sharp-boundary-turn 200", "--sharp-boundary-turn"}};
+    {"--sharp-boundary-turn 200", "--sharp-boundary-turn"},
+    {"--relocation-retry -1", "--relocation-retry"}};
   for(const auto& [options, named] : bad_options) {
     INFO(options);
     r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' " + options);
@@ -330,6 +332,29 @@ TEST_CASE("build relocates the layout nodes when no volume on the decomposition 
   for(std::size_t p = 0; p < model.volume.volume.number_of_patches(); ++p)
     CHECK(asked.volume.volume.patch(p).control_points() == model.volume.volume.patch(p).control_points());
   CHECK_THROWS_AS(PI::build_trivariate_model(m, one_grid.node_relocation_retry(-1)), PI::Invalid_input_error);
+}
+
+TEST_CASE("build CLI writes the volume on relocated nodes and reports the retry", "[build][cli][relocation]")
+{
+  // The library test's mushroom on one grid of 8: valid only with its nodes relocated.
+  const std::string xml = temp_path("mushroom_relocated.xml"), report = temp_path("mushroom_relocated.json");
+  const std::string one_grid = " --grid 8 --max-grid 8 --stretch-rounds 0 --min-degree 3 --quiet";
+  Cli_result r = run_cli("build '" + data("mushroom.off") + "' -o '" + xml + "' --report '" + report + "'" + one_grid);
+  CHECK(r.exit_code == 0);
+  CHECK(exists(xml));
+  std::string rep = slurp(report);
+  CHECK(rep.find("\"relocation_retried\":true") != std::string::npos);
+  CHECK(rep.find("\"nodes_relocated\":0") == std::string::npos);
+  CHECK(rep.find("nodes are relocated") != std::string::npos);
+  // Without the retry: not valid, nothing written, and the report says no retry ran.
+  std::remove(xml.c_str());
+  r = run_cli("build '" + data("mushroom.off") + "' -o '" + xml + "' --report '" + report + "'" + one_grid + " --relocation-retry 0");
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("boundary_distance") != std::string::npos);
+  CHECK(!exists(xml));
+  rep = slurp(report);
+  CHECK(rep.find("\"relocation_retried\":false") != std::string::npos);
+  CHECK(rep.find("\"nodes_relocated\":0") != std::string::npos);
 }
 
 TEST_CASE("build gives a certified valid volume for a torus", "[build]")
