@@ -18,6 +18,7 @@
 #include <CGAL/Polycube_IGA/Polycube_layout.h>
 #include <CGAL/Polycube_IGA/Surface_topology.h>
 #include <CGAL/Polycube_IGA/internal/layout_corner_angles.h>
+#include <CGAL/Polycube_IGA/internal/layout_measures.h>
 #include <CGAL/Polycube_IGA/parameters.h>
 
 #include <algorithm>
@@ -642,6 +643,16 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
                                            : std::string(a > 90. ? "nearly flat" : "a sliver") + ", so the face fitted there has det J near 0"));
       }
   }
+  // And patches too elongated: a strip's fitted face turns over where the strip bends, at any
+  // grid the ladder tries (internal::patch_elongation()).
+  if(!model.is_valid())
+    for(std::size_t p = 0; p < model.layout.patches.size(); ++p) {
+      if(model.layout.patches[p].kind != std::decay_t<decltype(model.layout)>::SURFACE) continue;
+      const double e = internal::patch_elongation(model.layout, p);
+      if(e > internal::strip_elongation)
+        model.warnings.push_back("layout patch " + std::to_string(p) + " is a strip " + internal::short_number(e) +
+                                 " times as long as it is wide: a face fitted along it turns over where it bends");
+    }
   if(model.volume.quality_evaluated)
     for(std::size_t c = 0; c < model.volume.quality.certified.size(); ++c)
       if(!model.volume.quality.certified[c].certified_positive) {

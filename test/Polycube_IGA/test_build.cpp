@@ -17,6 +17,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <set>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -208,6 +209,17 @@ TEST_CASE("build CLI writes nothing invalid and always reports", "[build][cli]")
   std::size_t listed = 0;
   for(std::size_t at = bad.find("\"degrees\":"); at != std::string::npos; at = bad.find("\"degrees\":", at + 1)) ++listed;
   CHECK(int(listed) == count_of("slivers") + count_of("nearly_flat") + count_of("reflex"));
+  // Every surface patch more than 8 times as long as wide is listed with its elongation
+  // (eight.off's layout has some: the two long sides of its waist).
+  const std::size_t strips_at = rep.find("\"strip_patches\":[");
+  REQUIRE(strips_at != std::string::npos);
+  const std::string strips = rep.substr(strips_at, rep.find(']', strips_at) - strips_at);
+  std::size_t strip_count = 0;
+  for(std::size_t at = strips.find("\"elongation\":"); at != std::string::npos; at = strips.find("\"elongation\":", at + 1)) {
+    ++strip_count;
+    CHECK(std::stod(strips.substr(at + 13)) > PI::internal::strip_elongation);
+  }
+  CHECK(strip_count > 0);
   CHECK(exists(layout));
   if(r.exit_code == 0) {
     CHECK(rep.find("\"valid\":true") != std::string::npos);
@@ -218,6 +230,10 @@ TEST_CASE("build CLI writes nothing invalid and always reports", "[build][cli]")
     CHECK((r.err.find("nonpositive_jacobian") != std::string::npos || r.err.find("boundary_distance") != std::string::npos));
     CHECK(!exists(xml));
     CHECK(rep.find("\"volume_written\":false") != std::string::npos);
+    // An invalid model names each strip in a warning.
+    std::size_t named = 0;
+    for(std::size_t at = rep.find("times as long as it is wide"); at != std::string::npos; at = rep.find("times as long as it is wide", at + 1)) ++named;
+    CHECK(named == strip_count);
   }
 }
 
@@ -951,4 +967,44 @@ TEST_CASE("the boundary layer raises the torus' minimum scaled Jacobian", "[buil
         without.volume.quality.overall_sampled.min_scaled_jacobian + 0.1);
   // The slabs' tops are fitted to the same grids: the same distance to the mesh.
   CHECK(with.volume.distance.relative == Approx(without.volume.distance.relative).epsilon(0.02));
+}
+
+TEST_CASE("build names the strips of an invalid layout and their faces turn over", "[build]")
+{
+  // 3torus.off (46 triangles, genus 3) on one grid of 8, no retry: not valid. Its layout's
+  // surface patches more than 8 times as long as they are wide are named, each once, and the
+  // fitted face turns over on every one of them (what the warning says).
+  const Mesh m = load(data("3torus.off"));
+  const auto model = PI::build_trivariate_model(m, PI::parameters::grid_resolution(8)
+                                                     .maximum_grid_resolution(8)
+                                                     .minimum_grid_resolution(8)
+                                                     .minimum_spline_degree(3)
+                                                     .grid_relaxation_sweeps(0)
+                                                     .stretch_rounds(0)
+                                                     .missing_part_cubes(0)
+                                                     .untangle_volume(false)
+                                                     .node_relocation_retry(0));
+  REQUIRE_FALSE(model.is_valid());
+  using Layout = PI::Polycube_layout<Point>;
+  std::set<std::size_t> strips;
+  for(std::size_t p = 0; p < model.layout.patches.size(); ++p) {
+    const double e = PI::internal::patch_elongation(model.layout, p);
+    CHECK(e >= 1.); // never shorter than wide: the longer pair of sides is the length
+    if(model.layout.patches[p].kind == Layout::SURFACE && e > PI::internal::strip_elongation) strips.insert(p);
+  }
+  REQUIRE(!strips.empty());
+  std::set<std::size_t> named;
+  for(const std::string& w : model.warnings)
+    if(w.find("times as long as it is wide") != std::string::npos) {
+      const std::size_t at = w.find("layout patch ");
+      REQUIRE(at != std::string::npos);
+      CHECK(named.insert(std::size_t(std::stoul(w.substr(at + 13)))).second);
+    }
+  CHECK(named == strips);
+  std::set<std::size_t> turned_over;
+  for(const auto& f : model.volume.distance.folded_sides) turned_over.insert(std::size_t(model.volume.slab_of[f.side.patch]));
+  for(std::size_t p : strips) {
+    INFO("strip " << p);
+    CHECK(turned_over.count(p) == 1);
+  }
 }

@@ -6,6 +6,8 @@
 
 #include "layout_fixtures.h"
 
+#include <CGAL/Polycube_IGA/internal/layout_measures.h>
+
 #include <catch2/catch.hpp>
 
 using namespace test_support;
@@ -103,4 +105,29 @@ TEST_CASE("layout assembly rebuilds patches and cuboids from nodes and arcs", "[
     broken.patches.clear();
     CHECK_THROWS_AS(CGAL::Polycube_IGA::internal::assemble_layout(broken, interior, cuboids, {}), CGAL::Polycube_IGA::Internal_error);
   }
+}
+
+TEST_CASE("patch elongation is length over width and names strips", "[layout]")
+{
+  using CGAL::Polycube_IGA::internal::patch_elongation;
+  using CGAL::Polycube_IGA::internal::strip_elongation;
+  // One cuboid 10 by 1 by 1: its four long sides are 10 by 1 strips, its ends unit squares.
+  const Layout L = box_chain_layout(1, 4, false, [](double x, double y, double z) { return Point(10. * x, y, z); });
+  REQUIRE(L.validate().is_valid());
+  std::size_t strips = 0, squares = 0;
+  for(std::size_t p = 0; p < L.patches.size(); ++p) {
+    const double e = patch_elongation(L, p);
+    if(e > strip_elongation) {
+      CHECK(e == Approx(10.).epsilon(1e-12));
+      ++strips;
+    } else {
+      CHECK(e == Approx(1.).epsilon(1e-12));
+      ++squares;
+    }
+  }
+  CHECK(strips == 4);
+  CHECK(squares == 2);
+  // A unit cube has none.
+  const Layout cube = box_chain_layout(1, 3);
+  for(std::size_t p = 0; p < cube.patches.size(); ++p) CHECK(patch_elongation(cube, p) == Approx(1.).epsilon(1e-12));
 }

@@ -21,6 +21,7 @@
 #include <CGAL/Polycube_IGA/Polycube_layout.h>
 #include <CGAL/Polycube_IGA/internal/atomic_file.h>
 #include <CGAL/Polycube_IGA/internal/json_writer.h>
+#include <CGAL/Polycube_IGA/internal/layout_measures.h>
 
 #include <array>
 #include <cmath>
@@ -87,45 +88,6 @@ std::vector<int> node_valences(const Polycube_layout<P>& L)
     for(std::size_t n : arc.nodes)
       if(n < out.size()) ++out[n];
   return out;
-}
-
-template <class P>
-std::array<double, 3> to_array(const P& p)
-{
-  return {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
-}
-
-/// Sum of the segment lengths along the arc's vertex path.
-template <class P>
-double arc_length(const Polycube_layout<P>& L, const typename Polycube_layout<P>::Arc& arc)
-{
-  double s = 0.;
-  for(std::size_t i = 0; i + 1 < arc.vertices.size(); ++i) {
-    const auto a = to_array(L.mesh.point(arc.vertices[i])), b = to_array(L.mesh.point(arc.vertices[i + 1]));
-    s += std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
-  }
-  return s;
-}
-
-/// Area of the patch's faces (each face by the norm of its vector area; 0 without faces).
-template <class P>
-double patch_area(const Polycube_layout<P>& L, const typename Polycube_layout<P>::Patch& pa)
-{
-  double s = 0.;
-  for(auto f : pa.faces) {
-    std::vector<std::array<double, 3>> q;
-    for(auto v : vertices_around_face(halfedge(f, L.mesh), L.mesh)) q.push_back(to_array(L.mesh.point(v)));
-    double n[3] = {0., 0., 0.};
-    for(std::size_t i = 1; i + 1 < q.size(); ++i) {
-      const double u[3] = {q[i][0] - q[0][0], q[i][1] - q[0][1], q[i][2] - q[0][2]};
-      const double w[3] = {q[i + 1][0] - q[0][0], q[i + 1][1] - q[0][1], q[i + 1][2] - q[0][2]};
-      n[0] += u[1] * w[2] - u[2] * w[1];
-      n[1] += u[2] * w[0] - u[0] * w[2];
-      n[2] += u[0] * w[1] - u[1] * w[0];
-    }
-    s += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  }
-  return s;
 }
 
 inline const char* patch_kind_name(int kind)
@@ -245,7 +207,7 @@ void write_layout_json(std::ostream& os, const Polycube_layout<P>& L, bool prett
   for(auto v : L.nodes) {
     long long input = -1;
     if(input_index.second && input_index.first[v] != std::size_t(-1)) input = (long long)(input_index.first[v]);
-    const auto p = internal_layout_io::to_array(L.mesh.point(v));
+    const auto p = Polycube_IGA::internal::layout_point_array(L.mesh.point(v));
     w.begin_object().member("vertex", Ull(std::size_t(v))).member("input_vertex", input);
     w.key("point").begin_array().value(p[0]).value(p[1]).value(p[2]).end_array();
     w.end_object();
@@ -259,7 +221,7 @@ void write_layout_json(std::ostream& os, const Polycube_layout<P>& L, bool prett
     w.key("vertices").begin_array();
     for(auto v : arc.vertices) w.value(Ull(std::size_t(v)));
     w.end_array();
-    w.member("length", internal_layout_io::arc_length(L, arc));
+    w.member("length", Polycube_IGA::internal::layout_arc_length(L, arc));
     w.end_object();
   }
   w.end_array();
@@ -272,7 +234,7 @@ void write_layout_json(std::ostream& os, const Polycube_layout<P>& L, bool prett
     w.end_array().key("arcs").begin_array();
     for(std::size_t a : pa.arcs) w.value(Ull(a));
     w.end_array();
-    w.member("faces", Ull(pa.faces.size())).member("area", internal_layout_io::patch_area(L, pa));
+    w.member("faces", Ull(pa.faces.size())).member("area", Polycube_IGA::internal::layout_patch_area(L, pa));
     w.end_object();
   }
   w.end_array();
