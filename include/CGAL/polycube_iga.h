@@ -633,7 +633,7 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
     for(std::size_t p = 0; p < angles.size(); ++p)
       for(int i = 0; i < 4; ++i) {
         const double a = angles[p][std::size_t(i)];
-        if(model.layout.patches[p].kind != std::decay_t<decltype(model.layout)>::SURFACE || (a >= internal::sliver_corner_degrees && a <= 180. - internal::sliver_corner_degrees)) continue;
+        if(model.layout.patches[p].kind != std::decay_t<decltype(model.layout)>::SURFACE || !internal::is_bad_corner(a)) continue;
         const std::size_t n = model.layout.patches[p].corners[std::size_t(i)];
         const Eigen::Vector3d x = internal::to_eigen_point(model.layout.mesh.point(model.layout.nodes[n]));
         model.warnings.push_back("layout patch " + std::to_string(p) + ": its corner at node " + std::to_string(n) + " " +
@@ -642,17 +642,12 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
                                  (a > 180. ? "reflex, so a face fitted to it turns over there"
                                            : std::string(a > 90. ? "nearly flat" : "a sliver") + ", so the face fitted there has det J near 0"));
       }
+    // And patches too elongated: a strip's fitted face turns over where the strip bends, at
+    // any grid the ladder tries (internal::patch_elongation()).
+    for(const auto& [p, e] : internal::strip_patches(model.layout))
+      model.warnings.push_back("layout patch " + std::to_string(p) + " is a strip " + internal::short_number(e) +
+                               " times as long as it is wide: a face fitted along it turns over where it bends");
   }
-  // And patches too elongated: a strip's fitted face turns over where the strip bends, at any
-  // grid the ladder tries (internal::patch_elongation()).
-  if(!model.is_valid())
-    for(std::size_t p = 0; p < model.layout.patches.size(); ++p) {
-      if(model.layout.patches[p].kind != std::decay_t<decltype(model.layout)>::SURFACE) continue;
-      const double e = internal::patch_elongation(model.layout, p);
-      if(e > internal::strip_elongation)
-        model.warnings.push_back("layout patch " + std::to_string(p) + " is a strip " + internal::short_number(e) +
-                                 " times as long as it is wide: a face fitted along it turns over where it bends");
-    }
   if(model.volume.quality_evaluated)
     for(std::size_t c = 0; c < model.volume.quality.certified.size(); ++c)
       if(!model.volume.quality.certified[c].certified_positive) {

@@ -138,10 +138,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
     // Surface patches longer than internal::strip_elongation times their width: their fitted
     // faces turn over where they bend.
     w.key("strip_patches").begin_array();
-    for(std::size_t p = 0; p < L.patches.size(); ++p)
-      if(L.patches[p].kind == std::decay_t<decltype(L)>::SURFACE)
-        if(const double e = PI::internal::patch_elongation(L, p); e > PI::internal::strip_elongation)
-          w.begin_object().member("patch", p).member("elongation", e).end_object();
+    for(const auto& [p, e] : PI::internal::strip_patches(L)) w.begin_object().member("patch", p).member("elongation", e).end_object();
     w.end_array();
     w.key("grid_attempts").begin_array();
     for(int g : model.grid_attempts) w.value(g);

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace CGAL {
@@ -80,6 +81,18 @@ double patch_elongation(const Polycube_layout<P>& L, std::size_t p)
   const double length = std::max(0.5 * (l[0] + l[2]), 0.5 * (l[1] + l[3]));
   const double area = layout_patch_area(L, pa);
   return area > 0. ? length * length / area : std::numeric_limits<double>::infinity();
+}
+
+/// The strips of `L`: each surface patch whose patch_elongation() is over strip_elongation,
+/// with that elongation, in patch order (the driver's warnings and the CLI report).
+template <class P>
+std::vector<std::pair<std::size_t, double>> strip_patches(const Polycube_layout<P>& L)
+{
+  std::vector<std::pair<std::size_t, double>> out;
+  for(std::size_t p = 0; p < L.patches.size(); ++p)
+    if(L.patches[p].kind == Polycube_layout<P>::SURFACE)
+      if(const double e = patch_elongation(L, p); e > strip_elongation) out.push_back({p, e});
+  return out;
 }
 
 } // namespace internal
