@@ -444,6 +444,45 @@ TEST_CASE("cuboid decomposition of a torus is a ring of at least 3 cuboids", "[c
   }
 }
 
+TEST_CASE("cuboid decomposition does not depend on the unit: pipe.off scaled", "[cuboid]")
+{
+  // pipe.off's structured mesh puts the corners of a section on one ring. Scaled by 2, 3,
+  // 1.1 or 10 (not by 4: every rounding then scales exactly), a path snapped two vertices
+  // onto the line through a corner that rounding had put a hair off it, the flat triangle
+  // stopped the segment to that corner (segment_crossing) and the layout came from a
+  // subdivided mesh: other nodes, and a volume 20 times farther from the mesh (1.36% of the
+  // diagonal against 0.07%). Now the same layout, arc for arc, to rounding.
+  const Mesh m = load(data("pipe.off"));
+  const Layout L = decompose(m);
+  REQUIRE(L.mesh.number_of_faces() < 2 * m.number_of_faces());
+  const auto in_L = L.mesh.property_map<Mesh::Vertex_index, std::size_t>(PI::input_vertex_index_property()).first;
+  auto arc_length = [](const Layout& lay, std::size_t a) {
+    double l = 0.;
+    const auto& vs = lay.arcs[a].vertices;
+    for(std::size_t i = 0; i + 1 < vs.size(); ++i) l += std::sqrt(CGAL::squared_distance(lay.mesh.point(vs[i]), lay.mesh.point(vs[i + 1])));
+    return l;
+  };
+  for(double scale : {2., 3., 1.1, 10.}) {
+    INFO("scale " << scale);
+    Mesh scaled = m;
+    for(auto v : vertices(scaled)) scaled.point(v) = CGAL::ORIGIN + scale * (scaled.point(v) - CGAL::ORIGIN);
+    const Layout S = decompose(scaled);
+    check_layout(scaled, S);
+    CHECK(S.mesh.number_of_faces() < 2 * m.number_of_faces()); // not subdivided (x 4)
+    REQUIRE(S.nodes.size() == L.nodes.size());
+    REQUIRE(S.arcs.size() == L.arcs.size());
+    const auto in_S = S.mesh.property_map<Mesh::Vertex_index, std::size_t>(PI::input_vertex_index_property()).first;
+    for(std::size_t n = 0; n < L.nodes.size(); ++n) {
+      CHECK(in_S[S.nodes[n]] == in_L[L.nodes[n]]);
+      CHECK(std::sqrt(CGAL::squared_distance(S.mesh.point(S.nodes[n]), CGAL::ORIGIN + scale * (L.mesh.point(L.nodes[n]) - CGAL::ORIGIN))) < 1e-12 * scale);
+    }
+    for(std::size_t a = 0; a < L.arcs.size(); ++a) {
+      CHECK(S.arcs[a].vertices.size() == L.arcs[a].vertices.size());
+      CHECK(std::abs(arc_length(S, a) / scale - arc_length(L, a)) < 1e-9 * arc_length(L, a));
+    }
+  }
+}
+
 TEST_CASE("cuboid decomposition of a pants patch gives 4 cuboids", "[cuboid]")
 {
   const Mesh m = load(data("head.off"));

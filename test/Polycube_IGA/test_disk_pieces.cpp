@@ -769,6 +769,35 @@ TEST_CASE("a segment within 1e-12 of a vertex snaps to it or passes beside a loc
   }
 }
 
+TEST_CASE("a snap that leaves a triangle flat to within rounding is refused", "[disk_pieces]")
+{
+  // A vertex v moved onto the side (a, x) of its star, a hair inside: the triangle (v, a, x)
+  // is positive by rounding alone. Scaling the mesh (pipe.off by 2) turned such refusals,
+  // exact on the line, into snaps whose flat triangle later stopped a segment.
+  const Mesh m = load(data("mushroom.off"));
+  Mesh piece = PII::cut_into_pieces(m, {})[0];
+  REQUIRE(map_onto_polygon(piece, 4).flipped == 0);
+  PII::Segment_inserter<Point> ins(piece);
+  int tried = 0;
+  for(V v : vertices(piece)) {
+    if(piece.is_border(v)) continue;
+    const auto h = halfedge(v, piece); // x -> v, the triangle (v, a, x)
+    const V a = target(next(h, piece), piece), x = source(h, piece);
+    const Vec2 A = ins.uv[a], X = ins.uv[x], mid = 0.5 * (A + X);
+    // Well inside, a tenth of the way from the side to v: a star that allows it.
+    if(!ins.star_positive_at(v, mid + 0.1 * (ins.uv[v] - mid))) continue;
+    Vec2 q = mid;
+    const Vec2 in = ins.uv[v] - mid;
+    const double inf = std::numeric_limits<double>::infinity();
+    while(PII::uv_orientation(q, A, X) != CGAL::LEFT_TURN)
+      q = Vec2(std::nextafter(q.x(), in.x() > 0 ? inf : -inf), std::nextafter(q.y(), in.y() > 0 ? inf : -inf));
+    CHECK_FALSE(ins.star_positive_at(v, q));
+    CHECK_FALSE(ins.try_move(v, q));
+    if(++tried == 20) break;
+  }
+  CHECK(tried == 20);
+}
+
 TEST_CASE("crossing an earlier path is refused", "[disk_pieces]")
 {
   const Mesh m = load(data("mushroom.off"));

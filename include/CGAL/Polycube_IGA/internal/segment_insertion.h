@@ -67,7 +67,12 @@ struct Segment_inserter
 
   static double cross(const Vec& a, const Vec& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-  /// Whether every triangle around v stays positive with v at q.
+  /// Whether every triangle around v stays positive with v at q, and not flat to within
+  /// rounding: the sine of its angle at q above 1e-10. A snap that leaves a triangle positive
+  /// by rounding alone (pipe.off scaled by 2: a corner a hair off the line a path snapped two
+  /// vertices onto) is exactly the one refused when the corner lies on that line (pipe.off
+  /// as read), so scaling the mesh does not change the decision; the triangle, flat in uv but
+  /// not in 3D, would later stop a segment reaching the corner.
   bool star_positive_at(V v, const Vec& q) const
   {
     for(H h : halfedges_around_target(halfedge(v, m), m)) {
@@ -75,6 +80,8 @@ struct Segment_inserter
       // h: x -> v; the triangle is (v, a, x) counter-clockwise.
       const V a = target(next(h, m), m), x = source(h, m);
       if(uv_orientation(q, uv[a], uv[x]) != CGAL::LEFT_TURN) return false;
+      const Vec qa = uv[a] - q, qx = uv[x] - q;
+      if(!(cross(qa, qx) > 1e-10 * qa.norm() * qx.norm())) return false;
     }
     return true;
   }
