@@ -642,11 +642,15 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
                                  (a > 180. ? "reflex, so a face fitted to it turns over there"
                                            : std::string(a > 90. ? "nearly flat" : "a sliver") + ", so the face fitted there has det J near 0"));
       }
-    // And patches too elongated: a strip's fitted face turns over where the strip bends, at
-    // any grid the ladder tries (internal::patch_elongation()).
-    for(const auto& [p, e] : internal::strip_patches(model.layout))
-      model.warnings.push_back("layout patch " + std::to_string(p) + " is a strip " + internal::short_number(e) +
-                               " times as long as it is wide: a face fitted along it turns over where it bends");
+    // And patches too elongated, at any grid the ladder tries (internal::patch_elongation()):
+    // where the strip's long sides differ by a width or more, its grid lines across are
+    // sheared nearly along it (internal::patch_side_drift()).
+    for(const internal::Layout_strip& s : internal::strip_patches(model.layout))
+      model.warnings.push_back("layout patch " + std::to_string(s.patch) + " is a strip " + internal::short_number(s.elongation) +
+                               " times as long as it is wide" +
+                               (s.drift >= 1. ? ", its long sides differing by " + internal::short_number(s.drift) +
+                                                    " widths: sampled at equal fractions of each, its grid is sheared nearly flat and turns over"
+                                              : std::string(": a face fitted along it turns over where it bends")));
   }
   if(model.volume.quality_evaluated)
     for(std::size_t c = 0; c < model.volume.quality.certified.size(); ++c)

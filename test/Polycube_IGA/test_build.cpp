@@ -215,11 +215,18 @@ TEST_CASE("build CLI writes nothing invalid and always reports", "[build][cli]")
   REQUIRE(strips_at != std::string::npos);
   const std::string strips = rep.substr(strips_at, rep.find(']', strips_at) - strips_at);
   std::size_t strip_count = 0;
+  std::size_t drifts = 0;
   for(std::size_t at = strips.find("\"elongation\":"); at != std::string::npos; at = strips.find("\"elongation\":", at + 1)) {
     ++strip_count;
     CHECK(std::stod(strips.substr(at + 13)) > PI::internal::strip_elongation);
   }
+  // ... and by how many widths its long sides differ.
+  for(std::size_t at = strips.find("\"drift\":"); at != std::string::npos; at = strips.find("\"drift\":", at + 1)) {
+    ++drifts;
+    CHECK(std::stod(strips.substr(at + 8)) >= 0.);
+  }
   CHECK(strip_count > 0);
+  CHECK(drifts == strip_count);
   CHECK(exists(layout));
   if(r.exit_code == 0) {
     CHECK(rep.find("\"valid\":true") != std::string::npos);
@@ -998,7 +1005,11 @@ TEST_CASE("build names the strips of an invalid layout and their faces turn over
     if(w.find("times as long as it is wide") != std::string::npos) {
       const std::size_t at = w.find("layout patch ");
       REQUIRE(at != std::string::npos);
-      CHECK(named.insert(std::size_t(std::stoul(w.substr(at + 13)))).second);
+      const std::size_t p = std::size_t(std::stoul(w.substr(at + 13)));
+      CHECK(named.insert(p).second);
+      // The shear is named where the long sides differ by a width or more.
+      const bool sheared = PI::internal::patch_side_drift(model.layout, p) >= 1.;
+      CHECK((w.find("its grid is sheared nearly flat") != std::string::npos) == sheared);
     }
   CHECK(named == strips);
   std::set<std::size_t> turned_over;

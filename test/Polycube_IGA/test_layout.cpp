@@ -110,6 +110,7 @@ TEST_CASE("layout assembly rebuilds patches and cuboids from nodes and arcs", "[
 TEST_CASE("patch elongation is length over width and names strips", "[layout]")
 {
   using CGAL::Polycube_IGA::internal::patch_elongation;
+  using CGAL::Polycube_IGA::internal::patch_side_drift;
   using CGAL::Polycube_IGA::internal::strip_elongation;
   // One cuboid 10 by 1 by 1: its four long sides are 10 by 1 strips, its ends unit squares.
   const Layout L = box_chain_layout(1, 4, false, [](double x, double y, double z) { return Point(10. * x, y, z); });
@@ -130,4 +131,35 @@ TEST_CASE("patch elongation is length over width and names strips", "[layout]")
   // A unit cube has none.
   const Layout cube = box_chain_layout(1, 3);
   for(std::size_t p = 0; p < cube.patches.size(); ++p) CHECK(patch_elongation(cube, p) == Approx(1.).epsilon(1e-12));
+  // Equal long sides do not drift.
+  for(std::size_t p = 0; p < L.patches.size(); ++p) CHECK(patch_side_drift(L, p) == Approx(0.).margin(1e-12));
+}
+
+TEST_CASE("patch side drift is the difference of the long sides over the width", "[layout]")
+{
+  using CGAL::Polycube_IGA::internal::patch_elongation;
+  using CGAL::Polycube_IGA::internal::patch_side_drift;
+  using CGAL::Polycube_IGA::internal::strip_patches;
+  // A cuboid whose x extent shrinks from 20 at y = 0 to 16 at y = 1 (height 1 in z): its
+  // sides z = 0 and z = 1 are trapezoids with long sides 20 and 16 a width 1 apart (drift 4,
+  // elongation 18); its sides y = 0 and y = 1 are 20 by 1 and 16 by 1 rectangles (drift 0);
+  // its ends x = 0 (a unit square) and x = 1 (4.12 by 1) are no strips.
+  const Layout L = box_chain_layout(1, 4, false, [](double x, double y, double z) { return Point((20. - 4. * y) * x, y, z); });
+  REQUIRE(L.validate().is_valid());
+  std::size_t trapezoids = 0, rectangles = 0;
+  for(const auto& s : strip_patches(L)) {
+    CHECK(s.elongation == Approx(patch_elongation(L, s.patch)).epsilon(1e-15));
+    CHECK(s.drift == Approx(patch_side_drift(L, s.patch)).epsilon(1e-15));
+    if(s.drift > 1.) {
+      CHECK(s.drift == Approx(4.).epsilon(1e-9));
+      CHECK(s.elongation == Approx(18.).epsilon(1e-9));
+      ++trapezoids;
+    } else {
+      CHECK(s.drift == Approx(0.).margin(1e-9));
+      CHECK((s.elongation == Approx(20.).epsilon(1e-9) || s.elongation == Approx(16.).epsilon(1e-9)));
+      ++rectangles;
+    }
+  }
+  CHECK(trapezoids == 2);
+  CHECK(rectangles == 2);
 }

@@ -135,10 +135,11 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
         if(L.patches[p].kind == std::decay_t<decltype(L)>::SURFACE && PI::internal::is_bad_corner(angles[p][i]))
           w.begin_object().member("patch", p).member("node", L.patches[p].corners[i]).member("degrees", angles[p][i]).end_object();
     w.end_array();
-    // Surface patches longer than internal::strip_elongation times their width: their fitted
-    // faces turn over where they bend.
+    // Surface patches longer than internal::strip_elongation times their width, and by how
+    // many widths their long sides differ (their grids shear by as much).
     w.key("strip_patches").begin_array();
-    for(const auto& [p, e] : PI::internal::strip_patches(L)) w.begin_object().member("patch", p).member("elongation", e).end_object();
+    for(const auto& s : PI::internal::strip_patches(L))
+      w.begin_object().member("patch", s.patch).member("elongation", s.elongation).member("drift", s.drift).end_object();
     w.end_array();
     w.key("grid_attempts").begin_array();
     for(int g : model.grid_attempts) w.value(g);
