@@ -789,8 +789,9 @@ TEST_CASE("a snap that leaves a triangle flat to within rounding is refused", "[
     Vec2 q = mid;
     const Vec2 in = ins.uv[v] - mid;
     const double inf = std::numeric_limits<double>::infinity();
-    while(PII::uv_orientation(q, A, X) != CGAL::LEFT_TURN)
+    for(int step = 0; step < 64 && PII::uv_orientation(q, A, X) != CGAL::LEFT_TURN; ++step)
       q = Vec2(std::nextafter(q.x(), in.x() > 0 ? inf : -inf), std::nextafter(q.y(), in.y() > 0 ? inf : -inf));
+    REQUIRE(PII::uv_orientation(q, A, X) == CGAL::LEFT_TURN);
     CHECK_FALSE(ins.star_positive_at(v, q));
     CHECK_FALSE(ins.try_move(v, q));
     if(++tried == 20) break;
