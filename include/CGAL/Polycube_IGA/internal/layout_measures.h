@@ -72,6 +72,9 @@ struct Patch_extent
   double long_side_a = 0., long_side_b = 0., area = 0.;
   double length() const { return 0.5 * (long_side_a + long_side_b); }
   double width() const { return length() > 0. ? area / length() : 0.; } ///< area over length
+  /// See patch_elongation() and patch_side_drift().
+  double elongation() const { return area > 0. ? length() * length() / area : std::numeric_limits<double>::infinity(); }
+  double drift() const { return area > 0. ? std::abs(long_side_a - long_side_b) / width() : std::numeric_limits<double>::infinity(); }
 };
 
 template <class P>
@@ -97,8 +100,7 @@ Patch_extent patch_extent(const Polycube_layout<P>& L, std::size_t p)
 template <class P>
 double patch_elongation(const Polycube_layout<P>& L, std::size_t p)
 {
-  const Patch_extent e = patch_extent(L, p);
-  return e.area > 0. ? e.length() * e.length() / e.area : std::numeric_limits<double>::infinity();
+  return patch_extent(L, p).elongation();
 }
 
 /// By how many of its widths a patch's two long sides differ in length: 0 for a rectangle,
@@ -112,8 +114,7 @@ double patch_elongation(const Polycube_layout<P>& L, std::size_t p)
 template <class P>
 double patch_side_drift(const Polycube_layout<P>& L, std::size_t p)
 {
-  const Patch_extent e = patch_extent(L, p);
-  return e.area > 0. ? std::abs(e.long_side_a - e.long_side_b) / e.width() : std::numeric_limits<double>::infinity();
+  return patch_extent(L, p).drift();
 }
 
 /// A strip of a layout (strip_patches()).
@@ -132,7 +133,7 @@ std::vector<Layout_strip> strip_patches(const Polycube_layout<P>& L)
   std::vector<Layout_strip> out;
   for(std::size_t p = 0; p < L.patches.size(); ++p)
     if(L.patches[p].kind == Polycube_layout<P>::SURFACE)
-      if(const double e = patch_elongation(L, p); e > strip_elongation) out.push_back({p, e, patch_side_drift(L, p)});
+      if(const Patch_extent x = patch_extent(L, p); x.elongation() > strip_elongation) out.push_back({p, x.elongation(), x.drift()});
   return out;
 }
 
