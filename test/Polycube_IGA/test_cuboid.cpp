@@ -14,6 +14,7 @@
 #include <CGAL/Polycube_IGA/Pants_decomposition.h>
 #include <CGAL/Polycube_IGA/internal/bbox_diagonal.h>
 #include <CGAL/Polycube_IGA/internal/feature_curves.h>
+#include <CGAL/Polycube_IGA/internal/layout_measures.h>
 #include <CGAL/Polycube_IGA/internal/loop_corners.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -456,12 +457,7 @@ TEST_CASE("cuboid decomposition does not depend on the unit: pipe.off scaled", "
   const Layout L = decompose(m);
   REQUIRE(L.mesh.number_of_faces() < 2 * m.number_of_faces());
   const auto in_L = L.mesh.property_map<Mesh::Vertex_index, std::size_t>(PI::input_vertex_index_property()).first;
-  auto arc_length = [](const Layout& lay, std::size_t a) {
-    double l = 0.;
-    const auto& vs = lay.arcs[a].vertices;
-    for(std::size_t i = 0; i + 1 < vs.size(); ++i) l += std::sqrt(CGAL::squared_distance(lay.mesh.point(vs[i]), lay.mesh.point(vs[i + 1])));
-    return l;
-  };
+  auto arc_length = [](const Layout& lay, std::size_t a) { return PI::internal::layout_arc_length(lay, lay.arcs[a]); };
   for(double scale : {2., 3., 1.1, 10.}) {
     INFO("scale " << scale);
     Mesh scaled = m;
