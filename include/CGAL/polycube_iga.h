@@ -651,6 +651,13 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
                                (s.drift >= 1. ? ", its long sides differing by " + internal::short_number(s.drift) +
                                                     " widths: sampled at equal fractions of each, its grid is sheared nearly flat and turns over"
                                               : std::string(": a face fitted along it turns over where it bends")));
+    // And bands (internal::patch_fill()): no sampling opens their grid cells.
+    for(const internal::Layout_band& b : internal::band_patches(model.layout))
+      model.warnings.push_back("layout patch " + std::to_string(b.patch) + " is a band: its area is " + internal::short_number(b.fill) +
+                               " of its mean length times its mean breadth (its sides run close together, or one nearly vanishes), "
+                               "so the cells of any grid on it cover about " + internal::short_number(b.fill) +
+                               " of the area their sides would span at right angles, and a face fitted there is likely to turn "
+                               "over: no sampling opens them, the layout must change there");
   }
   if(model.volume.quality_evaluated)
     for(std::size_t c = 0; c < model.volume.quality.certified.size(); ++c)

@@ -227,6 +227,19 @@ TEST_CASE("build CLI writes nothing invalid and always reports", "[build][cli]")
   }
   CHECK(strip_count > 0);
   CHECK(drifts == strip_count);
+  // Bands are listed with their fill, under internal::band_fill, and their elongation.
+  const std::size_t bands_at = rep.find("\"band_patches\":[");
+  REQUIRE(bands_at != std::string::npos);
+  const std::string bands = rep.substr(bands_at, rep.find(']', bands_at) - bands_at);
+  std::size_t band_count = 0, band_elongations = 0;
+  for(std::size_t at = bands.find("\"fill\":"); at != std::string::npos; at = bands.find("\"fill\":", at + 1)) {
+    ++band_count;
+    const double f = std::stod(bands.substr(at + 7));
+    CHECK(f >= 0.);
+    CHECK(f < PI::internal::band_fill);
+  }
+  for(std::size_t at = bands.find("\"elongation\":"); at != std::string::npos; at = bands.find("\"elongation\":", at + 1)) ++band_elongations;
+  CHECK(band_elongations == band_count);
   CHECK(exists(layout));
   if(r.exit_code == 0) {
     CHECK(rep.find("\"valid\":true") != std::string::npos);
@@ -1012,6 +1025,18 @@ TEST_CASE("build names the strips of an invalid layout and their faces turn over
       CHECK((w.find("its grid is sheared nearly flat") != std::string::npos) == sheared);
     }
   CHECK(named == strips);
+  // Bands (area under a third of length times breadth) are named too, each once.
+  std::set<std::size_t> bands, named_bands;
+  for(std::size_t p = 0; p < model.layout.patches.size(); ++p)
+    if(model.layout.patches[p].kind == Layout::SURFACE && PI::internal::patch_fill(model.layout, p) < PI::internal::band_fill) bands.insert(p);
+  for(const std::string& w : model.warnings)
+    if(w.find(" is a band: ") != std::string::npos) {
+      const std::size_t at = w.find("layout patch ");
+      REQUIRE(at != std::string::npos);
+      CHECK(named_bands.insert(std::size_t(std::stoul(w.substr(at + 13)))).second);
+    }
+  CHECK(!bands.empty());
+  CHECK(named_bands == bands);
   std::set<std::size_t> turned_over;
   for(const auto& f : model.volume.distance.folded_sides) turned_over.insert(std::size_t(model.volume.slab_of[f.side.patch]));
   for(std::size_t p : strips) {

@@ -10,6 +10,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <array>
+
 using namespace test_support;
 
 namespace {
@@ -107,6 +109,21 @@ TEST_CASE("layout assembly rebuilds patches and cuboids from nodes and arcs", "[
   }
 }
 
+// How many patches of L measure below `split` and how many above; each must measure `low`
+// or `high` (to 1e-12).
+template <class Measure>
+std::array<std::size_t, 2> split_patches(const Layout& L, Measure measure, double split, double low, double high)
+{
+  std::array<std::size_t, 2> n{{0, 0}};
+  for(std::size_t p = 0; p < L.patches.size(); ++p) {
+    const double x = measure(L, p);
+    const bool above = x > split;
+    CHECK(x == Approx(above ? high : low).epsilon(1e-12));
+    ++n[above ? 1 : 0];
+  }
+  return n;
+}
+
 TEST_CASE("patch elongation is length over width and names strips", "[layout]")
 {
   using CGAL::Polycube_IGA::internal::patch_elongation;
@@ -115,24 +132,46 @@ TEST_CASE("patch elongation is length over width and names strips", "[layout]")
   // One cuboid 10 by 1 by 1: its four long sides are 10 by 1 strips, its ends unit squares.
   const Layout L = box_chain_layout(1, 4, false, [](double x, double y, double z) { return Point(10. * x, y, z); });
   REQUIRE(L.validate().is_valid());
-  std::size_t strips = 0, squares = 0;
-  for(std::size_t p = 0; p < L.patches.size(); ++p) {
-    const double e = patch_elongation(L, p);
-    if(e > strip_elongation) {
-      CHECK(e == Approx(10.).epsilon(1e-12));
-      ++strips;
-    } else {
-      CHECK(e == Approx(1.).epsilon(1e-12));
-      ++squares;
-    }
-  }
-  CHECK(strips == 4);
-  CHECK(squares == 2);
+  const auto squares_strips = split_patches(L, patch_elongation<Point>, strip_elongation, 1., 10.);
+  CHECK(squares_strips[0] == 2);
+  CHECK(squares_strips[1] == 4);
   // A unit cube has none.
   const Layout cube = box_chain_layout(1, 3);
   for(std::size_t p = 0; p < cube.patches.size(); ++p) CHECK(patch_elongation(cube, p) == Approx(1.).epsilon(1e-12));
   // Equal long sides do not drift.
   for(std::size_t p = 0; p < L.patches.size(); ++p) CHECK(patch_side_drift(L, p) == Approx(0.).margin(1e-12));
+}
+
+TEST_CASE("patch fill is the area over length times breadth and names bands", "[layout]")
+{
+  using CGAL::Polycube_IGA::internal::band_fill;
+  using CGAL::Polycube_IGA::internal::band_patches;
+  using CGAL::Polycube_IGA::internal::patch_elongation;
+  using CGAL::Polycube_IGA::internal::patch_fill;
+  // A unit cube sheared along x by s times y: its sides z = 0 and z = 1 are parallelograms
+  // with sides 1 and sqrt(1 + s^2) and area 1, so they fill 1 / sqrt(1 + s^2) of the
+  // rectangle their sides span; the other four sides are rectangles (fill 1).
+  for(const double shear : {3., 4.}) {
+    const Layout L = box_chain_layout(1, 4, false, [&](double x, double y, double z) { return Point(x + shear * y, y, z); });
+    REQUIRE(L.validate().is_valid());
+    const double sine = 1. / std::sqrt(1. + shear * shear);
+    const auto parallelograms_rectangles = split_patches(L, patch_fill<Point>, 0.5, sine, 1.);
+    CHECK(parallelograms_rectangles[0] == 2);
+    CHECK(parallelograms_rectangles[1] == 4);
+    // Sheared by 3 they fill 0.316 (no band), by 4 0.243 (bands), and are as elongated as
+    // the square of their long side over their area.
+    const auto bands = band_patches(L);
+    CHECK(bands.size() == (sine < band_fill ? 2u : 0u));
+    for(const auto& b : bands) {
+      CHECK(b.fill == Approx(sine).epsilon(1e-12));
+      CHECK(b.elongation == Approx(patch_elongation(L, b.patch)).epsilon(1e-15));
+      CHECK(b.elongation == Approx(1. + shear * shear).epsilon(1e-9));
+    }
+  }
+  // Long rectangles are strips, not bands.
+  const Layout bar = box_chain_layout(1, 4, false, [](double x, double y, double z) { return Point(10. * x, y, z); });
+  for(std::size_t p = 0; p < bar.patches.size(); ++p) CHECK(patch_fill(bar, p) == Approx(1.).epsilon(1e-12));
+  CHECK(band_patches(bar).empty());
 }
 
 TEST_CASE("patch side drift is the difference of the long sides over the width", "[layout]")

@@ -141,6 +141,12 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
     for(const auto& s : PI::internal::strip_patches(L))
       w.begin_object().member("patch", s.patch).member("elongation", s.elongation).member("drift", s.drift).end_object();
     w.end_array();
+    // Surface patches whose area is under internal::band_fill of their length times breadth:
+    // their grid cells are squeezed whatever the sampling.
+    w.key("band_patches").begin_array();
+    for(const auto& b : PI::internal::band_patches(L))
+      w.begin_object().member("patch", b.patch).member("fill", b.fill).member("elongation", b.elongation).end_object();
+    w.end_array();
     w.key("grid_attempts").begin_array();
     for(int g : model.grid_attempts) w.value(g);
     w.end_array();
