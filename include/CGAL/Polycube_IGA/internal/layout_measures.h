@@ -137,9 +137,8 @@ double patch_side_drift(const Polycube_layout<P>& L, std::size_t p)
 /// a parallelogram of angle a, 0 without area. Low when the four sides run close together
 /// along much of their length (a band) or one nearly vanishes: the cells of every grid
 /// between its sides cover about this fraction of the area their sides would span at right
-/// angles, whatever the sampling. At 16
-/// samples (before relaxation), the surface patches of fill under band_fill hold most of the
-/// grid quads that face against the mesh: femur.off 258 of 317, double-torus-3-holes.off 155
+/// angles, whatever the sampling. At 16 samples (before relaxation), the surface patches of
+/// fill under band_fill hold most of the grid quads that face against the mesh: femur.off 258 of 317, double-torus-3-holes.off 155
 /// of 173, anchor.off 133 of 162, elephant.off 126 of 155, 3torus.off 92 of 131, joint.off
 /// 65 of 78; with the strips (over strip_elongation; many are both), 147 of anchor.off's
 /// 162 and 139 of elephant.off's 155. Of the layouts of valid volumes, 3holes.obj has one
