@@ -2,8 +2,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
 // Lengths, areas and shapes of a layout's arcs and patches, measured on its mesh: the
-// layout JSON writes them, and build_trivariate_model() names the patches too elongated
-// for their grids (a strip whose long sides differ shears its grid until it turns over).
+// layout JSON writes them, and build_trivariate_model() names the patches whose shape
+// spoils their grids: strips (a strip whose long sides differ shears its grid until it
+// turns over) and bands (sides so close together that no grid's cells open).
 
 #ifndef CGAL_POLYCUBE_IGA_INTERNAL_LAYOUT_MEASURES_H
 #define CGAL_POLYCUBE_IGA_INTERNAL_LAYOUT_MEASURES_H
@@ -138,9 +139,9 @@ double patch_side_drift(const Polycube_layout<P>& L, std::size_t p)
 /// along much of their length (a band) or one nearly vanishes: the cells of every grid
 /// between its sides cover about this fraction of the area their sides would span at right
 /// angles, whatever the sampling. At 16 samples (before relaxation), the surface patches of
-/// fill under band_fill hold most of the grid quads that face against the mesh: femur.off 258 of 317, double-torus-3-holes.off 155
-/// of 173, anchor.off 133 of 162, elephant.off 126 of 155, 3torus.off 92 of 131, joint.off
-/// 65 of 78; with the strips (over strip_elongation; many are both), 147 of anchor.off's
+/// fill under band_fill hold most of the grid quads that face against the mesh: femur.off
+/// 258 of 317, double-torus-3-holes.off 155 of 173, anchor.off 133 of 162, elephant.off 126
+/// of 155, 3torus.off 92 of 131, joint.off 65 of 78; with the strips (over strip_elongation; many are both), 147 of anchor.off's
 /// 162 and 139 of elephant.off's 155. Of the layouts of valid volumes, 3holes.obj has one
 /// such patch (no quad facing against the mesh), blade.off and head.off none, and eight.off
 /// 4, which hold all 16 of its quads facing against the mesh: it is valid once its grids are
