@@ -309,6 +309,7 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
                                          .maximum_refinements(option(np, internal_np::maximum_refinements, 2))
                                          .belt_phase(variant.belt_phase)
                                          .corners_off_steps(variant.corners_off_steps)
+                                         .balance_pants_corners(option(np, internal_np::balance_pants_corners, false))
                                          .cut_pair_trials(option(np, internal_np::cut_pair_trials, default_cut_pair_trials)));
   });
   if(node_sweeps > 0)

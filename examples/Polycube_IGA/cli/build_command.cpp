@@ -223,7 +223,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
 int run_build(const Arguments& args)
 {
   Parsed_arguments a(args, {"--merge-duplicates", "--drop-isolated", "--no-self-intersection-test", "--allow-invalid", "--quiet",
-                      "--no-untangle", "--no-step-retry"},
+                      "--no-untangle", "--no-step-retry", "--balance-corners"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
                       "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--min-degree", "--relax-sweeps", "--stretch-rounds",
                       "--sharp-boundary-turn", "--belt-phases", "--relax-arcs", "--relocate-nodes", "--relocation-retry", "--cut-pair-trials", "--missing-part-cubes",
@@ -276,7 +276,7 @@ int run_build(const Arguments& args)
       .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid).minimum_spline_degree(min_degree)
       .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn).belt_phases(belt_phases)
       .step_retry(!a.has("--no-step-retry")).arc_relaxation_sweeps(arc_sweeps).node_relocation_sweeps(node_sweeps).node_relocation_retry(retry_sweeps).cut_pair_trials(pair_trials)
-      .missing_part_cubes(missing_part_cubes)
+      .missing_part_cubes(missing_part_cubes).balance_pants_corners(a.has("--balance-corners"))
       // An invalid volume is not written without --allow-invalid: no time spent improving it.
       .untangle_invalid_result(a.has("--allow-invalid")),
     progress);
@@ -351,7 +351,7 @@ Register_command build_command("build", {
   "                          [--sharp-boundary-turn D] [--belt-phases K] [--no-step-retry] [--relax-arcs K]\n"
   "                          [--relocate-nodes K] [--relocation-retry K] [--cut-pair-trials K]\n"
   "                          [--missing-part-cubes K] [--small-handle-length F] [--no-untangle]\n"
-  "                          [--allow-invalid]\n"
+  "                          [--balance-corners] [--allow-invalid]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
   "  --layout-vtu L    the polycube layout on the surface: patches, arcs, nodes\n"
@@ -396,6 +396,9 @@ Register_command build_command("build", {
   "  --relocation-retry K  when --relocate-nodes is 0 and no volume is valid, build the layout\n"
   "                    again with K sweeps of node relocation and keep it if valid (default 2;\n"
   "                    0: never)\n"
+  "  --balance-corners  move each pants half's four centre nodes in its convex map to where their\n"
+  "                    arcs meet at even angles on the mesh (default: where Tutte's rule puts\n"
+  "                    them); the layout's corners improve, its volumes are not more often valid\n"
   "  --cut-pair-trials K  the pants stage traces the cuts around the K most promising pairs of\n"
   "                    holes at each step and takes the most promising one whose cut is within\n"
   "                    10% of the lightest (default 16; 1: the most promising pair alone)\n"

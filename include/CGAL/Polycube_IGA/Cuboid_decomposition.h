@@ -389,7 +389,10 @@ inline Piece_graph disk_graph(const std::array<std::size_t, 4>& corner, double a
 /// along the belt, as a fraction of the zigzag's period, a third of the belt),
 /// `corners_off_steps` (default false: on a cylinder, section corners that the seam puts within
 /// 1/16 of a loop of a step of the loop, where it turns by over 45 degrees within the surface,
-/// move off it; internal::clear_of_steps()).
+/// move off it; internal::clear_of_steps()), `balance_pants_corners` (default false: each
+/// pants half's four centre nodes stay where Tutte's rule puts them in its convex map; true
+/// moves them to where their five arcs meet at even angles on the mesh,
+/// internal::balance_piece_graph_corners(): better corners, but no volume more valid).
 template <class TriangleMesh>
 class Cuboid_decomposition
 {
@@ -407,6 +410,7 @@ public:
     const int max_refinements = std::max(0, int(option(np, internal_np::maximum_refinements, 2)));
     const double belt_phase = double(option(np, internal_np::belt_phase, 0.));
     const bool off_steps = option(np, internal_np::corners_off_steps, false);
+    const bool balance = option(np, internal_np::balance_pants_corners, false);
     if(!(belt_phase >= 0. && belt_phase < 1.)) throw Invalid_input_error("invalid_parameter", "belt_phase must be in [0, 1)");
     Surface_topology_result<TriangleMesh> topo = internal::given_or_computed_topology(tm, get_parameter(np, internal_np::surface_topology));
     // Where a boundary is too coarse for its corners or a half has no room for its arcs, the
@@ -428,7 +432,7 @@ public:
     for(int attempt = 0;; ++attempt) {
       const TriangleMesh& mesh = refined ? *refined : tm;
       try {
-        Layout L = pd ? pants_layout(tm, *pd) : layout_of(mesh, topo, belt_phase, off_steps);
+        Layout L = pd ? pants_layout(tm, *pd, balance) : layout_of(mesh, topo, belt_phase, off_steps);
         // A cube's bottom can be a protrusion again (a long one): a few rounds.
         for(int round = 0; pd && round < 8; ++round) {
           const std::size_t cuboids = L.cuboids.size();
@@ -1259,7 +1263,7 @@ private:
   }
 
   // ---------------------------------------------------------------- pants ------------
-  static Layout pants_layout(const TriangleMesh& tm, const Pants_decomposition_result<TriangleMesh>& pd)
+  static Layout pants_layout(const TriangleMesh& tm, const Pants_decomposition_result<TriangleMesh>& pd, bool balance)
   {
     using namespace internal;
     Mesh m = copy_of(pd.mesh(tm));
@@ -1288,7 +1292,7 @@ private:
     std::vector<bool> input_cycle(nc);
     for(std::size_t c = 0; c < nc; ++c) input_cycle[c] = pd.cycles[c].kind == Pants_cycle<TriangleMesh>::INPUT_BOUNDARY;
     for(std::size_t k = 0; k < pants.size(); ++k)
-      pants_piece(pants[k], cycle_of, input_cycle, corners, hexagons[k], embeddings[k], loop_cycle[k], stem[k]);
+      pants_piece(pants[k], cycle_of, input_cycle, corners, hexagons[k], embeddings[k], loop_cycle[k], stem[k], balance);
     // Glue the refined halves into their pants, the pants into the surface.
     std::vector<Glued_mesh<Point>> glued_pants;
     std::vector<Mesh> refined_pants;
@@ -1401,7 +1405,8 @@ private:
   /// into two halves and embeds the half-polycube graph in each.
   static void pants_piece(Mesh& P, const std::vector<int>& cycle_of, const std::vector<bool>& input_cycle,
                           std::vector<std::vector<std::size_t>>& corners,
-                          std::vector<Mesh>& halves, std::vector<Embedding>& emb, std::array<int, 3>& loop_cycle, int& stem)
+                          std::vector<Mesh>& halves, std::vector<Embedding>& emb, std::array<int, 3>& loop_cycle, int& stem,
+                          bool balance)
   {
     using namespace internal;
     const std::vector<std::size_t> par = vertex_parents(P);
@@ -1635,6 +1640,7 @@ private:
                                                              {{6, 10}}, {{7, 11}}, {{8, 12}}, {{9, 13}},
                                                              {{10, 11}}, {{11, 12}}, {{12, 13}}, {{13, 10}}}};
       pg.segments.assign(seg.begin(), seg.end());
+      pg.balance_corners = balance;
       emb.push_back(embed_piece_graph(H, loop, pg));
     }
   }

@@ -71,65 +71,6 @@ struct Node_relocation_result
 
 namespace internal {
 
-/// Point location in a piece's uv map (a bucket grid over the unit disk), and the 3D point
-/// at a uv position by barycentric interpolation.
-template <class P>
-class Uv_locator
-{
-  using Mesh = CGAL::Surface_mesh<P>;
-  using F = typename Mesh::Face_index;
-
-public:
-  Uv_locator(const Mesh& piece, const Uv_map<P>& uv) : m_(piece), uv_(uv)
-  {
-    n_ = std::max(1, int(std::sqrt(double(num_faces(piece)))));
-    cells_.resize(std::size_t(n_ * n_));
-    for(F f : faces(piece)) {
-      Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-      for(auto v : vertices_around_face(halfedge(f, piece), piece)) {
-        lo = lo.cwiseMin(uv[v]);
-        hi = hi.cwiseMax(uv[v]);
-      }
-      const std::array<int, 2> a = cell(lo), b = cell(hi);
-      for(int j = a[1]; j <= b[1]; ++j)
-        for(int i = a[0]; i <= b[0]; ++i) cells_[std::size_t(j * n_ + i)].push_back(f);
-    }
-  }
-
-  /// The 3D point at uv position q, or nothing when q is in no triangle.
-  bool point_at(const Eigen::Vector2d& q, Eigen::Vector3d& out) const
-  {
-    const std::array<int, 2> c = cell(q);
-    for(F f : cells_[std::size_t(c[1] * n_ + c[0])]) {
-      std::array<typename Mesh::Vertex_index, 3> t;
-      int k = 0;
-      for(auto v : vertices_around_face(halfedge(f, m_), m_)) t[std::size_t(k++)] = v;
-      const Eigen::Vector2d a = uv_[t[0]], b = uv_[t[1]], d = uv_[t[2]];
-      const double area = cross(b - a, d - a);
-      if(!(std::abs(area) > 0.)) continue;
-      const double l1 = cross(q - a, d - a) / area, l2 = cross(b - a, q - a) / area, l0 = 1. - l1 - l2;
-      const double eps = -1e-9;
-      if(l0 < eps || l1 < eps || l2 < eps) continue;
-      out = l0 * point3(m_, t[0]) + l1 * point3(m_, t[1]) + l2 * point3(m_, t[2]);
-      return true;
-    }
-    return false;
-  }
-
-private:
-  static double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-  std::array<int, 2> cell(const Eigen::Vector2d& q) const
-  {
-    std::array<int, 2> c;
-    for(int d = 0; d < 2; ++d) c[std::size_t(d)] = std::clamp(int((q[d] + 1.) * 0.5 * n_), 0, n_ - 1);
-    return c;
-  }
-  const Mesh& m_;
-  const Uv_map<P>& uv_;
-  int n_ = 1;
-  std::vector<std::vector<F>> cells_;
-};
-
 /// The union of some surface patches, cut out of the layout's mesh and mapped onto the
 /// unit circle by arc length along `loop` (its border, counter-clockwise).
 template <class Point_3>

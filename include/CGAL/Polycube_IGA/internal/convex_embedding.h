@@ -50,6 +50,74 @@ Uv_map<P> uv_map(CGAL::Surface_mesh<P>& m)
   return m.template add_property_map<typename CGAL::Surface_mesh<P>::Vertex_index, Eigen::Vector2d>("v:uv", Eigen::Vector2d(0, 0)).first;
 }
 
+/// Point location in a piece's uv map (a bucket grid over the unit disk), and the 3D point
+/// at a uv position by barycentric interpolation.
+template <class P>
+class Uv_locator
+{
+  using Mesh = CGAL::Surface_mesh<P>;
+  using F = typename Mesh::Face_index;
+
+public:
+  Uv_locator(const Mesh& piece, const Uv_map<P>& uv) : m_(piece), uv_(uv)
+  {
+    n_ = std::max(1, int(std::sqrt(double(num_faces(piece)))));
+    cells_.resize(std::size_t(n_ * n_));
+    for(F f : faces(piece)) {
+      Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+      for(auto v : vertices_around_face(halfedge(f, piece), piece)) {
+        lo = lo.cwiseMin(uv[v]);
+        hi = hi.cwiseMax(uv[v]);
+      }
+      const std::array<int, 2> a = cell(lo), b = cell(hi);
+      for(int j = a[1]; j <= b[1]; ++j)
+        for(int i = a[0]; i <= b[0]; ++i) cells_[std::size_t(j * n_ + i)].push_back(f);
+    }
+  }
+
+  /// The 3D point at uv position q, or nothing when q is in no triangle.
+  bool point_at(const Eigen::Vector2d& q, Eigen::Vector3d& out) const
+  {
+    Eigen::Vector3d normal;
+    return point_at(q, out, normal);
+  }
+
+  /// The same, and the unit normal of the triangle holding q.
+  bool point_at(const Eigen::Vector2d& q, Eigen::Vector3d& out, Eigen::Vector3d& normal) const
+  {
+    const std::array<int, 2> c = cell(q);
+    for(F f : cells_[std::size_t(c[1] * n_ + c[0])]) {
+      std::array<typename Mesh::Vertex_index, 3> t;
+      int k = 0;
+      for(auto v : vertices_around_face(halfedge(f, m_), m_)) t[std::size_t(k++)] = v;
+      const Eigen::Vector2d a = uv_[t[0]], b = uv_[t[1]], d = uv_[t[2]];
+      const double area = cross(b - a, d - a);
+      if(!(std::abs(area) > 0.)) continue;
+      const double l1 = cross(q - a, d - a) / area, l2 = cross(b - a, q - a) / area, l0 = 1. - l1 - l2;
+      const double eps = -1e-9;
+      if(l0 < eps || l1 < eps || l2 < eps) continue;
+      const Eigen::Vector3d x0 = point3(m_, t[0]), x1 = point3(m_, t[1]), x2 = point3(m_, t[2]);
+      out = l0 * x0 + l1 * x1 + l2 * x2;
+      normal = (x1 - x0).cross(x2 - x0).normalized();
+      return true;
+    }
+    return false;
+  }
+
+private:
+  static double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+  std::array<int, 2> cell(const Eigen::Vector2d& q) const
+  {
+    std::array<int, 2> c;
+    for(int d = 0; d < 2; ++d) c[std::size_t(d)] = std::clamp(int((q[d] + 1.) * 0.5 * n_), 0, n_ - 1);
+    return c;
+  }
+  const Mesh& m_;
+  const Uv_map<P>& uv_;
+  int n_ = 1;
+  std::vector<std::vector<F>> cells_;
+};
+
 /// Exact orientation of the uv triangle (a, b, c).
 inline CGAL::Orientation uv_orientation(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c)
 {

@@ -3,7 +3,8 @@
 //
 // The angles of a layout's surface patches at their corners, measured on the mesh, and
 // their statistics. The driver reports them (a sliver or reflex corner is why a fitted face degenerates there)
-// and the arc relaxation (Layout_arc_relaxation.h) moves arcs to bring them nearer 90.
+// and the arc relaxation (Layout_arc_relaxation.h) moves arcs to bring them nearer 90; the
+// pants halves' corner balance (piece_graph_corners.h) measures its corners the same way.
 
 #ifndef CGAL_POLYCUBE_IGA_INTERNAL_LAYOUT_CORNER_ANGLES_H
 #define CGAL_POLYCUBE_IGA_INTERNAL_LAYOUT_CORNER_ANGLES_H

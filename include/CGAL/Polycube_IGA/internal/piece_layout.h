@@ -15,6 +15,7 @@
 #include <CGAL/Polycube_IGA/Errors.h>
 #include <CGAL/Polycube_IGA/internal/convex_embedding.h>
 #include <CGAL/Polycube_IGA/internal/mesh_pieces.h>
+#include <CGAL/Polycube_IGA/internal/piece_graph_corners.h>
 #include <CGAL/Polycube_IGA/internal/segment_insertion.h>
 
 #include <Eigen/Dense>
@@ -49,6 +50,9 @@ struct Piece_graph
   /// If set: a piece vertex whose place in the polygon becomes `interior_center`, the interior
   /// vertices moved with it (a protrusion's far end, which the map squeezes anywhere).
   std::optional<std::size_t> interior_center_vertex;
+  /// If set: the interior vertices, once placed, move to where the edges meet at even
+  /// angles on the mesh (balance_piece_graph_corners()).
+  bool balance_corners = false;
 };
 
 /// The scale about g.interior_center at which the convex polygon of g's interior vertices
@@ -106,6 +110,7 @@ struct Piece_graph_embedding
   using vertex_descriptor = typename CGAL::Surface_mesh<P>::Vertex_index;
   std::vector<vertex_descriptor> vertex;            ///< piece vertex of each graph vertex
   std::vector<std::vector<vertex_descriptor>> path; ///< per segment, from its first to its second vertex
+  Piece_corner_balance balance;                     ///< what the corner balance did (Piece_graph::balance_corners)
 };
 
 /// Regular polygon positions for loop indices chosen by 3D arc length: vertex i of `loop`
@@ -191,6 +196,8 @@ Piece_graph_embedding<P> embed_piece_graph(CGAL::Surface_mesh<P>& piece,
     for(std::size_t i = 0; i < n; ++i)
       if(unknown[i] >= 0) uv[i] = x.row(unknown[i]).transpose();
   }
+
+  if(g.balance_corners) out.balance = balance_piece_graph_corners(piece, loop_uv, g.border_nodes, g.segments, uv);
 
   out.vertex.resize(n);
   for(std::size_t i = 0; i < nb; ++i) out.vertex[i] = loop[g.border_nodes[i]];
