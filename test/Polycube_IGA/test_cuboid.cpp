@@ -833,8 +833,8 @@ TEST_CASE("node relocation leaves a box laid out on its own corners as it is", "
 
 TEST_CASE("balance_pants_corners brings a pants layout's corners nearer right angles and moves only centre nodes", "[cuboid][pants]")
 {
-  // Mean deviation from 90 degrees, Tutte's places -> balanced: 3torus.off 44.2 -> 36.3,
-  // joint.off 52.2 -> 46.5 (on every test shape of the pants class it falls by 2 to 9).
+  // Mean deviation from 90 degrees, Tutte's places -> balanced: 3torus.off 44.2 -> 36.2,
+  // joint.off 52.2 -> 46.2 (on every test shape of the pants class it falls, by 2 to 9).
   for(const char* name : {"3torus.off", "joint.off"}) {
     INFO(name);
     const Mesh m = load(data(name));

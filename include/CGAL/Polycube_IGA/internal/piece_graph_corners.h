@@ -67,13 +67,16 @@ public:
     for(std::size_t i : border_nodes) ahead_uv_.push_back(loop_uv[(i + 1) % loop_uv.size()] - loop_uv[i]);
     order_ = rotation(uv);
   }
+  // The locator holds a reference to uv_map_: not copyable.
+  Piece_graph_corners(const Piece_graph_corners&) = delete;
+  Piece_graph_corners& operator=(const Piece_graph_corners&) = delete;
 
   /// Sum over the interior vertices of squared deviations from even angles (a vertex of
   /// valence k should have k corners of 360/k degrees), or infinity when a direction cannot
   /// be located in the map. The border vertices' corners are left out: splitting the angle
-  /// between a border vertex's border directions evenly among its edges as well made the
-  /// layouts worse (anchor.off: 20 -> 34 bands when those terms alone were lowered; every
-  /// test shape's corners and uncertified patches gained from the interior terms alone).
+  /// between a border vertex's border directions evenly among its edges as well left more
+  /// patches uncertified (3torus.off 73 -> 88 at one grid of 16), and alone it made
+  /// anchor.off's bands 20 -> 34.
   double deviation(const std::vector<Eigen::Vector2d>& uv) const
   {
     double sum = 0.;
