@@ -125,6 +125,14 @@ inline CGAL::Orientation uv_orientation(const Eigen::Vector2d& a, const Eigen::V
   return CGAL::orientation(K::Point_2(a.x(), a.y()), K::Point_2(b.x(), b.y()), K::Point_2(c.x(), c.y()));
 }
 
+/// Whether p lies strictly inside the convex counter-clockwise polygon `polygon` (exact).
+inline bool strictly_inside_convex_polygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p)
+{
+  for(std::size_t i = 0; i < polygon.size(); ++i)
+    if(uv_orientation(polygon[i], polygon[(i + 1) % polygon.size()], p) != CGAL::LEFT_TURN) return false;
+  return true;
+}
+
 /// Number of triangles of `m` whose "v:uv" orientation (exact) is not positive.
 template <class P>
 std::size_t count_nonpositive_uv_triangles(CGAL::Surface_mesh<P>& m)

@@ -67,7 +67,8 @@ public:
     for(std::size_t i : border_nodes) ahead_uv_.push_back(loop_uv[(i + 1) % loop_uv.size()] - loop_uv[i]);
     order_ = rotation(uv);
   }
-  // The locator holds a reference to uv_map_: not copyable.
+  // The locator holds a reference to uv_map_: not copyable. loop_uv and segments are the
+  // caller's and must outlive the object.
   Piece_graph_corners(const Piece_graph_corners&) = delete;
   Piece_graph_corners& operator=(const Piece_graph_corners&) = delete;
 
@@ -102,8 +103,7 @@ public:
   /// v crossing another, and the cyclic orders around v and its neighbours as they were.
   bool keeps_embedding(const std::vector<Eigen::Vector2d>& uv, std::size_t v) const
   {
-    for(std::size_t i = 0; i < loop_uv_.size(); ++i)
-      if(uv_orientation(loop_uv_[i], loop_uv_[(i + 1) % loop_uv_.size()], uv[v]) != CGAL::LEFT_TURN) return false;
+    if(!strictly_inside_convex_polygon(loop_uv_, uv[v])) return false;
     for(const auto& s : segments_) {
       if(s[0] != v && s[1] != v) continue;
       for(const auto& t : segments_)
@@ -153,7 +153,7 @@ private:
   const std::vector<Eigen::Vector2d>& loop_uv_;
   std::size_t nb_;
   std::vector<std::vector<std::size_t>> neighbours_;
-  std::vector<std::array<std::size_t, 2>> segments_;
+  const std::vector<std::array<std::size_t, 2>>& segments_;
   std::vector<Eigen::Vector2d> ahead_uv_;
   std::vector<std::vector<std::size_t>> order_;
 };

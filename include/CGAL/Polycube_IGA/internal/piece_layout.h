@@ -165,10 +165,8 @@ Piece_graph_embedding<P> embed_piece_graph(CGAL::Surface_mesh<P>& piece,
   // until they are inside.
   if(g.interior_center_vertex) {
     auto inside = [&](const Eigen::Vector2d& p) {
-      if(!std::isfinite(p.x())) return true; // placed by Tutte's rule below, inside
-      for(std::size_t i = 0; i < loop_uv.size(); ++i)
-        if(uv_orientation(loop_uv[i], loop_uv[(i + 1) % loop_uv.size()], p) != CGAL::LEFT_TURN) return false;
-      return true;
+      // NaN: placed by Tutte's rule below, inside.
+      return !std::isfinite(p.x()) || strictly_inside_convex_polygon(loop_uv, p);
     };
     for(int k = 0; k < 40 && !std::all_of(g.interior_uv.begin(), g.interior_uv.end(), inside); ++k)
       for(auto& p : g.interior_uv) p = g.interior_center + 0.75 * (p - g.interior_center);
