@@ -30,6 +30,28 @@ struct Interior_quad
   std::array<std::size_t, 4> corners{};
 };
 
+/// +1 when the corners `patch` (cyclic, counter-clockwise about the surface's outward normal)
+/// run around side `s` of `cu` counter-clockwise about the side's outward normal in the
+/// cuboid's (i,j,k) frame, -1 when they run the other way, 0 when they are not its corners
+/// in a cycle. Equal on every surface side of a cuboid whose frame is laid out consistently:
+/// the cuboid's handedness.
+template <class Layout>
+int side_orientation(const typename Layout::Cuboid& cu, int s, const std::array<std::size_t, 4>& patch)
+{
+  const int d = (s - 1) / 2, at = (s - 1) % 2;
+  // Layout::side_nodes() lists (a,b) = (0,0), (1,0), (0,1), (1,1); e_a x e_b is +e_d for
+  // d = 0 and 2, -e_d for d = 1, and the outward normal is -e_d at 0, +e_d at 1.
+  const int frame = (d == 1 ? -1 : 1) * (at == 1 ? 1 : -1);
+  const std::array<std::size_t, 4> n = Layout::side_nodes(cu, s);
+  const std::array<std::size_t, 4> cycle{{n[0], n[1], n[3], n[2]}};
+  const std::size_t i = std::size_t(std::find(patch.begin(), patch.end(), cycle[0]) - patch.begin());
+  if(i == 4) return 0;
+  int turn = 0;
+  if(patch[(i + 1) % 4] == cycle[1] && patch[(i + 2) % 4] == cycle[2] && patch[(i + 3) % 4] == cycle[3]) turn = 1;
+  if(patch[(i + 3) % 4] == cycle[1] && patch[(i + 2) % 4] == cycle[2] && patch[(i + 1) % 4] == cycle[3]) turn = -1;
+  return turn * frame;
+}
+
 /// Builds `L.patches` and `L.cuboids` from `L.nodes`, `L.arcs`, the interior quads and the
 /// cuboids' nodes (corner (i,j,k) at i+2j+4k). Throws Internal_error("layout_assembly")
 /// when the arcs do not cut the surface into quads matching the cuboids.
@@ -140,26 +162,45 @@ void assemble_layout(Polycube_layout<P>& L, const std::vector<Interior_quad>& in
     L.patches.push_back(patch);
   }
 
-  // Cuboid sides by corner set.
-  std::map<std::array<std::size_t, 4>, int> patch_of_corners;
+  // Cuboid sides by corner set. Two surface patches can share one: a pants whose two
+  // boundaries are one cycle (a handle) has two crotch patches on the same four nodes, one
+  // on each side, walked in opposite directions. The cuboid's other surface sides tell its
+  // handedness (side_orientation()), and that picks the patch turning the right way.
+  std::map<std::array<std::size_t, 4>, std::vector<std::size_t>> patches_of_corners;
   for(std::size_t p = 0; p < L.patches.size(); ++p) {
     auto c = L.patches[p].corners;
     std::sort(c.begin(), c.end());
-    auto ins = patch_of_corners.emplace(c, int(p));
-    if(!ins.second) ins.first->second = -2;
+    patches_of_corners[c].push_back(p);
   }
+  auto candidates = [&](const typename Layout::Cuboid& cu, int s) -> const std::vector<std::size_t>& {
+    static const std::vector<std::size_t> none;
+    auto key = Layout::side_nodes(cu, s);
+    std::sort(key.begin(), key.end());
+    const auto it = patches_of_corners.find(key);
+    return it == patches_of_corners.end() ? none : it->second;
+  };
   L.cuboids.clear();
   for(std::size_t c = 0; c < cuboid_nodes.size(); ++c) {
     typename Layout::Cuboid cu;
     cu.nodes = cuboid_nodes[c];
     cu.pants = cuboid_pants.empty() ? -1 : cuboid_pants[c];
+    int handedness = 0; // 2: the sides disagree
     for(int s = 1; s <= 6; ++s) {
-      auto key = Layout::side_nodes(cu, s);
-      std::sort(key.begin(), key.end());
-      auto it = patch_of_corners.find(key);
-      if(it == patch_of_corners.end() || it->second < 0)
-        fail("side " + std::to_string(s) + " of cuboid " + std::to_string(c) + " matches no unique patch");
-      cu.patches[std::size_t(s - 1)] = std::size_t(it->second);
+      const auto& cand = candidates(cu, s);
+      if(cand.size() != 1 || L.patches[cand.front()].kind != Layout::SURFACE) continue;
+      const int o = side_orientation<Layout>(cu, s, L.patches[cand.front()].corners);
+      handedness = handedness == 0 || handedness == o ? o : 2;
+    }
+    for(int s = 1; s <= 6; ++s) {
+      std::vector<std::size_t> cand = candidates(cu, s);
+      if(cand.size() > 1 && handedness != 0)
+        cand.erase(std::remove_if(cand.begin(), cand.end(), [&](std::size_t p) {
+          return L.patches[p].kind != Layout::SURFACE || side_orientation<Layout>(cu, s, L.patches[p].corners) != handedness;
+        }), cand.end());
+      if(cand.size() != 1)
+        fail("side " + std::to_string(s) + " of cuboid " + std::to_string(c) + " matches " +
+             (cand.empty() ? std::string("no patch") : std::to_string(cand.size()) + " patches"));
+      cu.patches[std::size_t(s - 1)] = cand.front();
     }
     L.cuboids.push_back(cu);
   }
