@@ -1,0 +1,203 @@
+// Copyright (c) 2026 Polycube_IGA contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Suite `unseen`: issue 5's "done when" measured on meshes the tests and the tuning never
+// used. Two kinds of case, each built once with the defaults of `polycube_iga build` (no
+// untangling of a result that stays invalid, since the command writes no invalid volume):
+//   - shared-data meshes no test reads (a CAD fan disk and a gear, a capped cylinder, a
+//     denser anchor, the armadillo, femurs of the population);
+//   - the test meshes remeshed: PMP::isotropic_remeshing to about `target_faces` faces,
+//     with the edges whose faces meet at over 50 degrees, the border edges, and the
+//     vertices where such edges do not pass straight through kept as constraints, so the
+//     shape is the same and every triangle (hence every map, cut and arc) new.
+// A remeshed surface is validated as `build` validates a file (a remeshing that makes
+// faces intersect gives an input row, not a build). Per case: class, genus, valid (every
+// patch's det J certified positive and the boundary within 2% of the diagonal), patches
+// left uncertified, Hausdorff distance over the diagonal, and the build's wall clock
+// against the same-run CHOLMOD baseline of the mesh suites. The build is deterministic,
+// so one run each. The closing line counts the valid cases.
+//
+//   build/bin/polycube_iga_benchmark unseen            # every case (about an hour)
+//   build/bin/polycube_iga_benchmark --quick unseen    # the cases that build in seconds
+
+#include "bench_meshes.h"
+
+#include <CGAL/polycube_iga.h>
+#include <CGAL/Polygon_mesh_processing/detect_features.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/remesh.h>
+
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace polycube_iga_bench {
+namespace {
+
+namespace PI = CGAL::Polycube_IGA;
+namespace PMP = CGAL::Polygon_mesh_processing;
+using meshes::Mesh;
+
+struct Unseen_case
+{
+  const char* file;      ///< relative to the shared data directory, or "test:" + test data name
+  std::size_t faces;     ///< remeshed to about this many faces; 0: as it is
+  bool quick;            ///< part of --quick
+};
+
+// Test meshes whose shapes the tests cover, remeshed; then shared meshes no test reads.
+const Unseen_case cases[] = {
+  {"cgal/sphere.off", 5000, true},           {"cgal/cube-meshed.off", 5000, true},
+  {"cgal/mushroom.off", 5000, true},         {"cinolib/maxFace.obj", 5000, true},
+  {"test:bent_tube.off", 5000, true},        {"cgal/blade.off", 5000, false},
+  {"cinolib/torus.obj", 5000, true},         {"cgal/pipe.off", 5000, true},
+  {"cgal/knot.off", 5000, true},             {"test:square_ring.off", 5000, false},
+  {"cgal/head.off", 5000, true},             {"test:ybranch.off", 5000, true},
+  {"test:ybranch_jagged.off", 5000, true},   {"cgal/mech-holes-shark.off", 5000, false},
+  {"cgal/eight.off", 5000, true},            {"cgal/double-torus-example.off", 5000, true},
+  {"cgal/double-torus-3-holes.off", 5000, false}, {"cgal/joint.off", 5000, false},
+  {"cinolib/3holes.obj", 5000, true},        {"cgal/3torus.off", 5000, false},
+  {"cgal/anchor.off", 5000, false},          {"test:ring4.off", 5000, true},
+  {"test:ring5.off", 5000, true},            {"test:chain5.off", 5000, true},
+  {"test:plate5.off", 5000, true},           {"test:chain6.off", 5000, true},
+  {"test:plate6.off", 5000, true},           {"cgal/rotor.off", 5000, false},
+  {"cgal/cylinder.off", 0, true},            {"cgal/pinion.off", 0, true},
+  {"cgal/fandisk.off", 0, false},            {"cgal/anchor_dense.off", 0, false},
+  {"cgal/armadillo.off", 0, false},          {"population/femur/S002_Femur.ply", 0, true},
+  {"population/femur/S010_Femur.ply", 0, true},
+};
+
+/// Isotropic remeshing to about `target_faces` faces of equilateral triangles, sharp edges (dihedral
+/// turn over 50 degrees) and border edges constrained: they may be split or collapsed along
+/// themselves, never flipped; their corners stay.
+void remesh(Mesh& m, std::size_t target_faces)
+{
+  const double area = CGAL::to_double(PMP::area(m));
+  const double edge_length = std::sqrt(4. * area / (std::sqrt(3.) * double(target_faces)));
+  auto sharp = m.add_property_map<Mesh::Edge_index, bool>("e:unseen_sharp", false).first;
+  PMP::detect_sharp_edges(m, 50., sharp);
+  for(auto e : edges(m))
+    if(is_border(e, m)) put(sharp, e, true);
+  auto corner = m.add_property_map<Mesh::Vertex_index, bool>("v:unseen_corner", false).first;
+  for(auto v : vertices(m)) {
+    int k = 0;
+    for(auto h : CGAL::halfedges_around_target(v, m)) k += get(sharp, edge(h, m)) ? 1 : 0;
+    put(corner, v, k != 0 && k != 2);
+  }
+  PMP::isotropic_remeshing(faces(m), edge_length, m,
+                           CGAL::parameters::number_of_iterations(5).edge_is_constrained_map(sharp)
+                             .vertex_is_constrained_map(corner).protect_constraints(false).relax_constraints(true));
+  m.remove_property_map(sharp);
+  m.remove_property_map(corner);
+  m.collect_garbage();
+}
+
+/// The mesh as `build` would read it from a file: validated, with self-intersections.
+bool validated(const Mesh& in, Mesh& out, std::string& problem)
+{
+  std::vector<meshes::Point> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  for(auto v : vertices(in)) points.push_back(in.point(v));
+  for(auto f : faces(in)) {
+    polygons.emplace_back();
+    for(auto v : vertices_around_face(halfedge(f, in), in)) polygons.back().push_back(std::size_t(v));
+  }
+  const auto soup = PI::prepare_polygon_soup(points, polygons);
+  if(!soup.report.is_valid()) {
+    problem = "invalid";
+    for(const auto& q : soup.report.problems)
+      if(q.severity == PI::Input_problem::ERROR) {
+        problem = q.code;
+        break;
+      }
+    return false;
+  }
+  out.clear();
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(soup.points, soup.polygons, out);
+  return true;
+}
+
+struct Outcome
+{
+  std::string name, layout_class, error;
+  std::size_t faces = 0, patches = 0, uncertified = 0;
+  int genus = 0;
+  bool valid = false;
+  double hausdorff = 0, seconds = 0, baseline = 0;
+};
+
+Outcome run_case(const Options& opt, const Unseen_case& c)
+{
+  Outcome o;
+  const std::string file = c.file;
+  const bool in_tests = file.rfind("test:", 0) == 0;
+  const std::string path = in_tests ? std::string(POLYCUBE_IGA_TEST_DATA_DIR) + "/" + file.substr(5) : opt.data_dir + "/" + file;
+  o.name = meshes::base_name(path) + (c.faces ? " ~" + std::to_string(c.faces) : std::string());
+  Mesh read, mesh;
+  if(!meshes::read_subdivided(path, 0, read)) {
+    o.error = "cannot read " + path;
+    return o;
+  }
+  if(c.faces) remesh(read, c.faces);
+  if(!validated(read, mesh, o.error)) {
+    o.error = "input: " + o.error;
+    return o;
+  }
+  o.faces = num_faces(mesh);
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    const auto model = PI::build_trivariate_model(mesh, PI::parameters::untangle_invalid_result(false));
+    o.valid = model.is_valid();
+    o.genus = model.layout.genus;
+    o.layout_class = PI::layout_class_name(model.layout.layout_class);
+    o.patches = model.volume.volume.number_of_patches();
+    for(const auto& b : model.volume.quality.certified) o.uncertified += b.certified_positive ? 0 : 1;
+    o.hausdorff = model.volume.distance.relative;
+  } catch(const PI::Error& e) {
+    o.error = e.reason();
+  }
+  o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double assembly = 0, residual = 0;
+  o.baseline = meshes::cholmod_laplacian_baseline(mesh, opt.repetitions, assembly, residual);
+
+  char label[96];
+  std::snprintf(label, sizeof(label), "%s (%zuf)", o.name.c_str(), o.faces);
+  report("unseen", label,
+         {{"faces", double(o.faces)}, {"genus", double(o.genus)}, {"valid", o.valid ? 1. : 0.},
+          {"failed", o.error.empty() ? 0. : 1.}, {"patches", double(o.patches)},
+          {"uncertified_patches", double(o.uncertified)}, {"hausdorff_over_diagonal", o.hausdorff}},
+         {{"build", o.seconds}}, "cholmod", o.baseline);
+  return o;
+}
+
+void run_suite(const Options& opt)
+{
+  meshes::One_core core;
+  std::printf("# suite unseen: defaults of polycube_iga build, one run each, %s\n",
+              core.pinned() ? "pinned to one core" : "not pinned (one thread)");
+  std::vector<Outcome> rows;
+  for(const Unseen_case& c : cases)
+    if(c.quick || !opt.quick) rows.push_back(run_case(opt, c));
+  std::printf("\n# unseen: valid = every det J certified positive and the boundary within 2%% of the diagonal\n");
+  std::printf("%-34s %7s %-9s %2s %6s %11s %8s %8s %9s\n", "mesh", "faces", "class", "g", "valid", "uncertified", "H/diag",
+              "build s", "build/bl");
+  std::size_t valid = 0;
+  for(const Outcome& o : rows) {
+    valid += o.valid ? 1 : 0;
+    if(!o.error.empty()) {
+      std::printf("%-34s %7zu  failed: %s\n", o.name.c_str(), o.faces, o.error.c_str());
+      continue;
+    }
+    std::printf("%-34s %7zu %-9s %2d %6s %5zu / %-4zu %7.2f%% %8.1f %9.0f\n", o.name.c_str(), o.faces, o.layout_class.c_str(),
+                o.genus, o.valid ? "yes" : "no", o.uncertified, o.patches, 100 * o.hausdorff, o.seconds, o.seconds / o.baseline);
+  }
+  std::printf("# valid: %zu of %zu\n", valid, rows.size());
+  std::fflush(stdout);
+}
+
+static Register_suite unseen_suite("unseen", run_suite);
+
+} // namespace
+} // namespace polycube_iga_bench
