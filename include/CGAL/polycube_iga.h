@@ -591,9 +591,15 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
     for(int N = first_grid; N >= minimum_grid && worth_retrying(); N /= 2)
       if(!retry_on_grid(N, degree)) break;
   if(first_grid_hopeless && worth_retrying()) { // none was valid
-    const bool deferred = untangle && untangle_invalid && other_phases_follow && model.layout.layout_class == Layout_class::sphere;
+    // A boundary too far from the mesh stays so, but a side found turned over against the
+    // mesh is a heuristic verdict: a thin part's side can face away from the nearest mesh
+    // face and still bound a valid volume. blade.off is so: untangled here it is valid, and
+    // it was not when untangle_invalid_result(false) skipped it. So that verdict is put to the test.
+    const bool distance_too_far = !(model.volume.distance.relative <= model.maximum_boundary_distance);
+    const bool untangle_here = untangle_invalid || !distance_too_far;
+    const bool deferred = untangle && untangle_here && other_phases_follow && model.layout.layout_class == Layout_class::sphere;
     if(untangling_deferred) *untangling_deferred = deferred;
-    if(untangle_invalid && !deferred)
+    if(untangle_here && !deferred)
       untangle_first_grid();
     else if(untangle)
       model.warnings.push_back("not untangled (untangle_invalid_result is false): no untangling makes this volume valid: " +
@@ -743,7 +749,7 @@ auto build_with_class_variants(const TriangleMesh& tm, const NamedParameters& np
   }
   if(deferred) { // phase 0 again, untangled; its first build's seconds are already listed
     model = *internal::build_on_layout(tm, np, progress, {}, true, false, nullptr);
-    seconds.insert(seconds.end(), model.stage_seconds.begin(), model.stage_seconds.end());
+    internal::append_stage_seconds(seconds, model.stage_seconds, ", belt phase 0, untangled");
   }
   if(!tried.empty())
     model.warnings.push_back("belt phases " + internal::comma_list(tried) + " of the zigzag's period were tried too and gave no valid volume");
@@ -776,8 +782,9 @@ auto build_with_class_variants(const TriangleMesh& tm, const NamedParameters& np
 /// combine those of the two that served their ends (the stretch with four times the rounds
 /// per doubling). `untangle_invalid_result` (true): when no grid gives a valid volume and the
 /// first one cannot become valid by untangling (boundary too far or turned over), untangle it
-/// all the same, for the best invalid result; false returns it as built, sooner (the CLI does
-/// so unless `--allow-invalid`, since it writes no invalid volume).
+/// all the same, for the best invalid result; false returns it as built, sooner, when its
+/// boundary is too far from the mesh (the CLI does so unless `--allow-invalid`, since it
+/// writes no invalid volume); a side turned over is a heuristic verdict, and it is untangled.
 /// `belt_phases` (4, at most 8): a closed genus-0 surface whose volume is not valid is built
 /// again on layouts whose belt nodes are moved by 1/8, 2/8, ... of the zigzag's period
 /// (Cuboid_decomposition's `belt_phase`), and the first valid one is kept; 1: never.

@@ -103,6 +103,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("untangling_min_relative_det_after", V.untangling.min_relative_determinant_after)
       .member("untangling_pinned_patches", V.untangling.pinned_patches.size())
       .member("untangling_passes", V.untangling.passes)
+      .member("untangling_stalled", V.untangling.stalled)
       .member("untangling_sliding_points", V.untangling.sliding_points)
       .member("relaxation_attempted", model.relaxation_attempted)
       .member("relaxed_grids", V.relaxation.sweeps > 0)
