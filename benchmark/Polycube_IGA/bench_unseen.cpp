@@ -25,7 +25,6 @@
 #include <CGAL/polycube_iga.h>
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 
 #include <chrono>
@@ -105,17 +104,13 @@ bool validated(const Mesh& in, Mesh& out, std::string& problem)
     for(auto v : vertices_around_face(halfedge(f, in), in)) polygons.back().push_back(std::size_t(v));
   }
   const auto soup = PI::prepare_polygon_soup(points, polygons);
-  if(!soup.report.is_valid()) {
-    problem = "invalid";
-    for(const auto& q : soup.report.problems)
-      if(q.severity == PI::Input_problem::ERROR) {
-        problem = q.code;
-        break;
-      }
+  try {
+    soup.report.require_valid();
+  } catch(const PI::Error& e) {
+    problem = e.reason();
     return false;
   }
-  out.clear();
-  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(soup.points, soup.polygons, out);
+  PI::build_triangle_mesh(soup, out);
   return true;
 }
 

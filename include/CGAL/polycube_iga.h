@@ -474,8 +474,9 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
   // mesh or turns over stays invalid whatever it does. Such a volume is untangled only if no
   // other grid below gives a valid one, for the best invalid result; before, every femur of
   // the population spent 40% of its run untangling its first grid, valid at the second.
+  auto too_far = [&](const Layout_volume_result& r) { return !(r.distance.relative <= model.maximum_boundary_distance); };
   auto why_untangling_cannot_validate = [&](const Layout_volume_result& r) -> std::string {
-    if(!(r.distance.relative <= model.maximum_boundary_distance))
+    if(too_far(r))
       return "its boundary is " + internal::percent_text(r.distance.relative) + " of the diagonal from the mesh";
     if(!internal::folded_uncertified_sides(r).empty()) return "a boundary side turns over";
     return "";
@@ -595,8 +596,7 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
     // mesh is a heuristic verdict: a thin part's side can face away from the nearest mesh
     // face and still bound a valid volume. blade.off is so: untangled here it is valid, and
     // it was not when untangle_invalid_result(false) skipped it. So that verdict is put to the test.
-    const bool distance_too_far = !(model.volume.distance.relative <= model.maximum_boundary_distance);
-    const bool untangle_here = untangle_invalid || !distance_too_far;
+    const bool untangle_here = untangle_invalid || !too_far(model.volume);
     const bool deferred = untangle && untangle_here && other_phases_follow && model.layout.layout_class == Layout_class::sphere;
     if(untangling_deferred) *untangling_deferred = deferred;
     if(untangle_here && !deferred)
