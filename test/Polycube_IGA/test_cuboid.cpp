@@ -457,6 +457,34 @@ TEST_CASE("cuboid decomposition of a torus is a ring of at least 3 cuboids", "[c
   }
 }
 
+TEST_CASE("a CAD ring is laid out on its sharp loops: square_ring.off", "[cuboid]")
+{
+  // A box with a square hole: its meridian crosses four creases, each running once round the
+  // ring. The ring's longitudinal arcs follow them (Cuboid_decomposition::feature_ring()),
+  // so no patch folds over the box's rims; the generic ring crossed them.
+  const Mesh m = load(data("square_ring.off"));
+  const Layout L = decompose(m);
+  CHECK(L.layout_class == PI::Layout_class::torus);
+  check_layout(m, L);
+  const std::size_t k = L.cuboids.size();
+  CHECK(k >= 3);
+  CHECK(L.nodes.size() == 4 * k);
+  CHECK(L.interfaces().size() == k);
+  const std::vector<bool> sharp = PI::internal::sharp_edges(L.mesh, 45.);
+  std::size_t on_creases = 0;
+  for(const auto& arc : L.arcs) {
+    bool all = true;
+    for(std::size_t i = 0; i + 1 < arc.vertices.size(); ++i) {
+      const auto h = halfedge(arc.vertices[i], arc.vertices[i + 1], L.mesh);
+      REQUIRE(h.second);
+      all = all && sharp[std::size_t(edge(h.first, L.mesh))];
+    }
+    on_creases += all;
+  }
+  // Four longitudinal arcs per cuboid, all on the rims (a section may run on a crease too).
+  CHECK(on_creases >= 4 * k);
+}
+
 TEST_CASE("cuboid decomposition does not depend on the unit: pipe.off scaled", "[cuboid]")
 {
   // pipe.off's structured mesh puts the corners of a section on one ring. Scaled by 2, 3,

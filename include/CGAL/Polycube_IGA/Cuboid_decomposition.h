@@ -227,14 +227,12 @@ std::size_t straightest_near(const Mesh_graph<Piece_mesh<P>>& g, const std::vect
   return best;
 }
 
-/// Shortest vertex path (3D length) from any root to `target`, entering no blocked vertex
-/// but the target; empty when unreachable.
+/// Shortest vertex path (by `w`, per edge of `g`) from any root to `target`, entering no
+/// blocked vertex but the target; empty when unreachable.
 template <class P>
 std::vector<int> shortest_vertex_path(const Mesh_graph<Piece_mesh<P>>& g, const std::vector<int>& roots, int target,
-                                      std::vector<bool> blocked)
+                                      std::vector<bool> blocked, const std::vector<double>& w)
 {
-  std::vector<double> w(std::size_t(g.number_of_edges()));
-  for(int e = 0; e < g.number_of_edges(); ++e) w[std::size_t(e)] = g.length(e);
   blocked[std::size_t(target)] = false;
   const Shortest_path_tree t = shortest_path_tree(g, roots, w, blocked);
   if(!std::isfinite(t.distance[std::size_t(target)])) return {};
@@ -242,6 +240,16 @@ std::vector<int> shortest_vertex_path(const Mesh_graph<Piece_mesh<P>>& g, const 
   while(t.parent_edge[std::size_t(path.back())] >= 0) path.push_back(g.other_vertex(t.parent_edge[std::size_t(path.back())], path.back()));
   std::reverse(path.begin(), path.end());
   return path;
+}
+
+/// The same by 3D length.
+template <class P>
+std::vector<int> shortest_vertex_path(const Mesh_graph<Piece_mesh<P>>& g, const std::vector<int>& roots, int target,
+                                      std::vector<bool> blocked)
+{
+  std::vector<double> w(std::size_t(g.number_of_edges()));
+  for(int e = 0; e < g.number_of_edges(); ++e) w[std::size_t(e)] = g.length(e);
+  return shortest_vertex_path(g, roots, target, std::move(blocked), w);
 }
 
 template <class P>
@@ -915,6 +923,26 @@ private:
   }
 
   // ------------------------------------------------------- cylinder and torus ----------
+  /// The sections of a chain (caps at both ends) or ring (interfaces only, `section.back()`
+  /// the same nodes as `section.front()`) of cuboids, each section's four nodes in cyclic
+  /// order round it, and the cuboids between consecutive sections.
+  static void add_sections(internal::Layout_builder& bld, const std::vector<std::array<std::size_t, 4>>& section, bool ring)
+  {
+    const int k = int(section.size()) - 1;
+    for(int j = 0; j < (ring ? k : k + 1); ++j) {
+      const bool cap = !ring && (j == 0 || j == k);
+      bld.interior.push_back({int(cap ? Layout::CAP : Layout::INTERFACE), section[std::size_t(j)]});
+    }
+    for(int c = 0; c < k; ++c) {
+      std::array<std::size_t, 8> cube{};
+      for(int i = 0; i < 2; ++i)
+        for(int b = 0; b < 2; ++b)
+          for(int a = 0; a < 2; ++a)
+            cube[std::size_t(i + 2 * a + 4 * b)] = section[std::size_t(c + i)][std::size_t(internal::cyclic_corner(a, b))];
+      bld.cuboids.push_back(cube);
+    }
+  }
+
   /// Lays a chain (or ring) of `k` cuboids in the disk `m` cut open along `cut`: the
   /// disk's border runs seam (bottom), loop 2 (right), seam back (top), loop 1 (left); it is
   /// mapped to a rectangle as long as the seam and as high as the loops, longitudinal arcs
@@ -1055,19 +1083,7 @@ private:
         }
       }
     }
-    const int sections = ring ? k : k + 1;
-    for(int j = 0; j < sections; ++j) {
-      const bool cap = !ring && (j == 0 || j == k);
-      bld.interior.push_back({int(cap ? Layout::CAP : Layout::INTERFACE), section[std::size_t(j)]});
-    }
-    for(int c = 0; c < k; ++c) {
-      std::array<std::size_t, 8> cube{};
-      for(int i = 0; i < 2; ++i)
-        for(int b = 0; b < 2; ++b)
-          for(int a = 0; a < 2; ++a)
-            cube[std::size_t(i + 2 * a + 4 * b)] = section[std::size_t(c + i)][std::size_t(cyclic_corner(a, b))];
-      bld.cuboids.push_back(cube);
-    }
+    add_sections(bld, section, ring);
     return finish_layout(std::move(gl.mesh), bld, ring ? Layout_class::torus : Layout_class::cylinder, genus, boundary_loops, 0);
   }
 
@@ -1210,9 +1226,240 @@ private:
     return strip(std::move(m), cut, seam, rotated(loops[0], seam.front()), rotated(loops[1], seam.back()), false, 0, 2, levels);
   }
 
+  /// A torus whose meridian crosses exactly four sharp feature curves (more than 45
+  /// degrees), each of which runs once around the ring (a CAD ring: a washer, a gear, a pipe
+  /// of rectangular section), is laid out on them: the four longitudinal loops of the ring
+  /// are traced along those curves (sharp edges cost a twentieth of their length), so that
+  /// no patch folds over the creases, and each band between two loops is mapped to a
+  /// rectangle of its own, in which the sections are straight. The generic ring of torus()
+  /// takes its levels at quarters of the meridian and its longitudinal arcs straight in one
+  /// map of the whole annulus: they cross the creases (`pinion.off`, a gear: a node on the
+  /// root of a tooth with a reflex corner, 16 of 30 patches uncertified). Empty when the
+  /// features are anything else.
+  static std::optional<Layout> feature_ring(const TriangleMesh& tm, const Surface_topology_result<TriangleMesh>& topo)
+  {
+    using namespace internal;
+    if(topo.handle_loops.empty()) return std::nullopt;
+    Mesh m = copy_of(topo.loop_mesh(tm));
+    std::vector<std::size_t> meridian;
+    for(auto v : topo.handle_loops[0].vertices) meridian.push_back(std::size_t(v));
+    const std::size_t nm = meridian.size();
+    const std::vector<bool> sharp = sharp_edges(m, 45.);
+    auto edge_of = [&](std::size_t a, std::size_t b) {
+      const auto h = halfedge(V(std::uint32_t(a)), V(std::uint32_t(b)), m);
+      if(!h.second) layout_failure("a loop is not an edge path");
+      return edge(h.first, m);
+    };
+    // Crossings: meridian vertices where a feature curve crosses it, i.e. with a sharp edge
+    // strictly between the meridian's two edges on either side of it (a curve that only
+    // touches the meridian, or that the meridian follows for a while, has sharp edges on
+    // one side only); neighbouring ones are one crossing, taken at their middle.
+    std::vector<bool> candidate(nm, false);
+    for(std::size_t i = 0; i < nm; ++i) {
+      const V v(std::uint32_t(meridian[i])), p(std::uint32_t(meridian[(i + nm - 1) % nm])), q(std::uint32_t(meridian[(i + 1) % nm]));
+      std::vector<V> around;
+      std::vector<bool> around_sharp;
+      for(auto h : halfedges_around_target(halfedge(v, m), m)) {
+        around.push_back(source(h, m));
+        around_sharp.push_back(sharp[std::size_t(edge(h, m))]);
+      }
+      const std::size_t n = around.size(), ip = std::size_t(std::find(around.begin(), around.end(), p) - around.begin()),
+                        iq = std::size_t(std::find(around.begin(), around.end(), q) - around.begin());
+      if(ip == n || iq == n) layout_failure("a loop is not an edge path");
+      auto sharp_between = [&](std::size_t from, std::size_t to) {
+        for(std::size_t k = (from + 1) % n; k != to; k = (k + 1) % n)
+          if(around_sharp[k]) return true;
+        return false;
+      };
+      candidate[i] = sharp_between(ip, iq) && sharp_between(iq, ip);
+    }
+    // Neighbouring candidates joined by an edge shorter than 1/32 of the meridian are one
+    // crossing (a meridian that zigzags across a crease); on a coarse CAD mesh every
+    // meridian vertex can be a crossing of its own (a gear's section: four vertices).
+    double meridian_length = 0.;
+    std::vector<double> link(nm); // edge from i - 1 to i
+    for(std::size_t i = 0; i < nm; ++i) {
+      link[i] = edge_length(m, V(std::uint32_t(meridian[(i + nm - 1) % nm])), V(std::uint32_t(meridian[i])));
+      meridian_length += link[i];
+    }
+    auto joined = [&](std::size_t i) { return candidate[i] && candidate[(i + nm - 1) % nm] && link[i] < meridian_length / 32.; };
+    std::vector<std::size_t> crossing; // meridian indices
+    for(std::size_t i = 0; i < nm; ++i) {
+      if(!candidate[i] || joined(i)) continue;
+      std::size_t len = 1;
+      while(len < nm && joined((i + len) % nm)) ++len;
+      crossing.push_back((i + len / 2) % nm);
+    }
+    if(crossing.size() != 4) return std::nullopt;
+    std::sort(crossing.begin(), crossing.end());
+    // The annulus (the torus cut along its meridian) and the four loops, each the cheapest
+    // path between the two copies of its crossing that no earlier loop touches.
+    std::vector<bool> cut(num_edges(m), false);
+    for(std::size_t i = 0; i < nm; ++i) cut[std::size_t(edge_of(meridian[i], meridian[(i + 1) % nm]))] = true;
+    std::vector<Mesh> annulus = cut_into_pieces(m, cut);
+    if(annulus.size() != 1) return std::nullopt;
+    const std::vector<std::size_t> par = vertex_parents(annulus[0]);
+    const auto sides = all_border_loops<Point>(annulus[0]);
+    if(sides.size() != 2) return std::nullopt;
+    Mesh_graph<Mesh> g(annulus[0], get(CGAL::vertex_point, annulus[0]));
+    std::vector<double> w(std::size_t(g.number_of_edges()));
+    std::vector<bool> edge_sharp(w.size(), false);
+    for(int e = 0; e < g.number_of_edges(); ++e) {
+      const auto h = halfedge(V(std::uint32_t(g.edge_vertices[std::size_t(e)][0])), V(std::uint32_t(g.edge_vertices[std::size_t(e)][1])), annulus[0]);
+      const std::size_t a = par[std::size_t(g.edge_vertices[std::size_t(e)][0])], b = par[std::size_t(g.edge_vertices[std::size_t(e)][1])];
+      edge_sharp[std::size_t(e)] = h.second && !is_border_edge(h.first, annulus[0]) && sharp[std::size_t(edge_of(a, b))];
+      w[std::size_t(e)] = g.length(e) * (edge_sharp[std::size_t(e)] ? 0.05 : 1.);
+    }
+    std::vector<bool> blocked(num_vertices(annulus[0]), false);
+    for(const auto& l : sides)
+      for(V v : l) blocked[v] = true;
+    std::array<std::vector<std::size_t>, 4> loop; // mesh vertices, from the crossing round to it (not repeated)
+    for(std::size_t l = 0; l < 4; ++l) {
+      const std::size_t c = meridian[crossing[l]];
+      V a, b;
+      for(V v : sides[0])
+        if(par[v] == c) a = v;
+      for(V v : sides[1])
+        if(par[v] == c) b = v;
+      if(a == V() || b == V()) return std::nullopt;
+      std::vector<bool> bl = blocked;
+      bl[a] = false;
+      const std::vector<int> path = shortest_vertex_path<Point>(g, {int(a)}, int(b), bl, w);
+      if(path.size() < 4) return std::nullopt;
+      // A feature loop: most of its length on sharp edges.
+      double on = 0., total = 0.;
+      for(std::size_t i = 0; i + 1 < path.size(); ++i)
+        for(int e = g.offset[std::size_t(path[i])]; e < g.offset[std::size_t(path[i]) + 1]; ++e)
+          if(g.adjacent_vertex[std::size_t(e)] == path[i + 1]) {
+            const int ed = g.adjacent_edge[std::size_t(e)];
+            total += g.length(ed);
+            if(edge_sharp[std::size_t(ed)]) on += g.length(ed);
+          }
+      if(!(on >= 0.8 * total)) return std::nullopt;
+      for(std::size_t i = 0; i + 1 < path.size(); ++i) {
+        loop[l].push_back(par[std::size_t(path[i])]);
+        blocked[std::size_t(path[i])] = true;
+      }
+      blocked[std::size_t(path.back())] = true;
+    }
+    // Sections: about as many as make the cuboids cube-like, as in strip(); the nodes on
+    // loop 0 at equal arc length, on each next loop its vertex nearest to the node below.
+    auto length_of = [&](const std::vector<std::size_t>& l) {
+      double s = 0.;
+      for(std::size_t i = 0; i < l.size(); ++i) s += edge_length(m, V(std::uint32_t(l[i])), V(std::uint32_t(l[(i + 1) % l.size()])));
+      return s;
+    };
+    double W = 0.;
+    for(const auto& l : loop) W += length_of(l) / 4.;
+    const double H = length_of(meridian);
+    const int k = std::min(32, std::max(3, int(std::lround(4. * W / H))));
+    std::array<std::vector<std::size_t>, 4> node_at; // loop index of section j's node
+    {
+      std::vector<V> l0;
+      for(std::size_t v : loop[0]) l0.push_back(V(std::uint32_t(v)));
+      const std::vector<double> s = loop_arc_length(m, l0);
+      for(int j = 0; j < k; ++j) node_at[0].push_back(j == 0 ? 0 : at_arc_length(s, 0, s.back() * j / k));
+    }
+    for(std::size_t l = 1; l < 4; ++l) {
+      node_at[l].push_back(0);
+      for(int j = 1; j < k; ++j) {
+        const auto& p = m.point(V(std::uint32_t(loop[l - 1][node_at[l - 1][std::size_t(j)]])));
+        std::size_t best = 1;
+        for(std::size_t i = 1; i < loop[l].size(); ++i)
+          if(CGAL::squared_distance(m.point(V(std::uint32_t(loop[l][i]))), p) < CGAL::squared_distance(m.point(V(std::uint32_t(loop[l][best]))), p))
+            best = i;
+        node_at[l].push_back(best);
+      }
+    }
+    for(const auto& at : node_at)
+      for(int j = 1; j < k; ++j)
+        if(at[std::size_t(j)] <= at[std::size_t(j - 1)]) return std::nullopt;
+    // The four bands: cut along the meridian and the loops, each band a disk whose border
+    // runs loop l (bottom), the meridian up to loop l+1, loop l+1 back, the meridian down.
+    for(const auto& l : loop)
+      for(std::size_t i = 0; i < l.size(); ++i) cut[std::size_t(edge_of(l[i], l[(i + 1) % l.size()]))] = true;
+    std::vector<Mesh> bands = cut_into_pieces(m, cut);
+    if(bands.size() != 4) return std::nullopt;
+    std::map<std::size_t, std::pair<std::size_t, std::size_t>> node_vertex; // mesh vertex -> (loop, section)
+    for(std::size_t l = 0; l < 4; ++l)
+      for(int j = 0; j < k; ++j) node_vertex[loop[l][node_at[l][std::size_t(j)]]] = {l, std::size_t(j)};
+    std::vector<Embedding> emb;
+    try {
+      for(Mesh& band : bands) {
+        const std::vector<std::size_t> bpar = vertex_parents(band);
+        std::vector<V> border = border_loop(band);
+        // Its corners: the copies of crossings (section 0 on two loops, twice each).
+        std::vector<std::size_t> corner;
+        for(std::size_t i = 0; i < border.size(); ++i) {
+          auto it = node_vertex.find(bpar[border[i]]);
+          if(it != node_vertex.end() && it->second.second == 0) corner.push_back(i);
+        }
+        if(corner.size() != 4) return std::nullopt;
+        // Start at a corner followed by a loop side (a side of the meridian runs through no
+        // node but its ends; a loop side through k - 1).
+        auto nodes_after = [&](std::size_t q) { // strictly between corner q and the next one
+          const std::size_t n = border.size(), to = corner[(q + 1) % 4] + (q == 3 ? n : 0);
+          std::size_t c = 0;
+          for(std::size_t i = corner[q] + 1; i < to; ++i) c += node_vertex.count(bpar[border[i % n]]);
+          return c;
+        };
+        std::size_t first = 0;
+        while(first < 4 && nodes_after(first) == 0) ++first;
+        if(first == 4 || nodes_after(first) != std::size_t(k - 1) || nodes_after((first + 1) % 4) != 0 ||
+           nodes_after((first + 2) % 4) != std::size_t(k - 1) || nodes_after((first + 3) % 4) != 0)
+          return std::nullopt;
+        const std::size_t offset = corner[first];
+        std::rotate(border.begin(), border.begin() + std::ptrdiff_t(offset), border.end());
+        for(std::size_t& c : corner) c = (c + border.size() - offset) % border.size();
+        std::sort(corner.begin(), corner.end());
+        const std::vector<double> s = loop_arc_length(band, border);
+        const double bw = 0.5 * ((s[corner[1]] - s[corner[0]]) + (s[corner[3]] - s[corner[2]]));
+        const double bh = 0.5 * ((s[corner[2]] - s[corner[1]]) + (s.back() - s[corner[3]]));
+        Piece_graph pg;
+        pg.anchors = {{corner[0], {0, 0}}, {corner[1], {bw, 0}}, {corner[2], {bw, bh}}, {corner[3], {0, bh}}};
+        // Section j's node on the bottom and on the top side.
+        std::map<std::size_t, std::size_t> bottom, top;
+        for(std::size_t i = corner[0] + 1; i < corner[3]; ++i) {
+          auto it = node_vertex.find(bpar[border[i]]);
+          if(it != node_vertex.end() && it->second.second != 0) (i < corner[1] ? bottom : top)[it->second.second] = i;
+        }
+        if(bottom.size() != std::size_t(k - 1) || top.size() != std::size_t(k - 1)) return std::nullopt;
+        for(int j = 1; j < k; ++j) {
+          pg.border_nodes.push_back(bottom.at(std::size_t(j)));
+          pg.border_nodes.push_back(top.at(std::size_t(j)));
+          pg.segments.push_back({{pg.border_nodes.size() - 2, pg.border_nodes.size() - 1}});
+        }
+        emb.push_back(embed_piece_graph(band, border, pg));
+      }
+    } catch(const std::out_of_range&) {
+      return std::nullopt;
+    } catch(const Internal_error&) {
+      return std::nullopt;
+    }
+    Glued_mesh<Point> gl = glue_pieces(m, bands);
+    Layout_builder bld;
+    std::vector<std::array<std::size_t, 4>> section(std::size_t(k + 1));
+    for(int j = 0; j < k; ++j)
+      for(std::size_t l = 0; l < 4; ++l) section[std::size_t(j)][l] = bld.node(loop[l][node_at[l][std::size_t(j)]]);
+    section[std::size_t(k)] = section[0];
+    for(std::size_t b = 0; b < bands.size(); ++b)
+      for(const auto& path : emb[b].path) bld.arc(final_path(gl, b, path));
+    for(const auto& l : loop) bld.loop_arcs(l);
+    bld.loop_arcs(meridian);
+    add_sections(bld, section, true);
+    try {
+      Layout L = finish_layout(std::move(gl.mesh), bld, Layout_class::torus, 1, 0, 0);
+      if(!L.validate().is_valid()) return std::nullopt;
+      return L;
+    } catch(const Internal_error&) {
+      return std::nullopt;
+    }
+  }
+
   static Layout torus(const TriangleMesh& tm, const Surface_topology_result<TriangleMesh>& topo)
   {
     using namespace internal;
+    if(std::optional<Layout> ring = feature_ring(tm, topo)) return std::move(*ring);
     if(topo.handle_loops.empty()) layout_failure("the torus has no handle loop");
     Mesh m = copy_of(topo.loop_mesh(tm));
     std::vector<std::size_t> meridian;
