@@ -1235,14 +1235,10 @@ private:
   /// takes its levels at quarters of the meridian and its longitudinal arcs straight in one
   /// map of the whole annulus: they cross the creases (`pinion.off`, a gear: a node on the
   /// root of a tooth with a reflex corner, 16 of 30 patches uncertified). Empty when the
-  /// features are anything else.
-  static std::optional<Layout> feature_ring(const TriangleMesh& tm, const Surface_topology_result<TriangleMesh>& topo)
+  /// features are anything else. `m` and `meridian` as in torus().
+  static std::optional<Layout> feature_ring(const Mesh& m, const std::vector<std::size_t>& meridian)
   {
     using namespace internal;
-    if(topo.handle_loops.empty()) return std::nullopt;
-    Mesh m = copy_of(topo.loop_mesh(tm));
-    std::vector<std::size_t> meridian;
-    for(auto v : topo.handle_loops[0].vertices) meridian.push_back(std::size_t(v));
     const std::size_t nm = meridian.size();
     const std::vector<bool> sharp = sharp_edges(m, 45.);
     auto edge_of = [&](std::size_t a, std::size_t b) {
@@ -1344,22 +1340,21 @@ private:
     }
     // Sections: about as many as make the cuboids cube-like, as in strip(); the nodes on
     // loop 0 at equal arc length, on each next loop its vertex nearest to the node below.
-    auto length_of = [&](const std::vector<std::size_t>& l) {
-      double s = 0.;
-      for(std::size_t i = 0; i < l.size(); ++i) s += edge_length(m, V(std::uint32_t(l[i])), V(std::uint32_t(l[(i + 1) % l.size()])));
-      return s;
+    auto arc_length_along = [&](const std::vector<std::size_t>& l) {
+      std::vector<V> vs;
+      for(std::size_t v : l) vs.push_back(V(std::uint32_t(v)));
+      return loop_arc_length(m, vs);
     };
+    std::array<std::vector<double>, 4> loop_s;
     double W = 0.;
-    for(const auto& l : loop) W += length_of(l) / 4.;
-    const double H = length_of(meridian);
+    for(std::size_t l = 0; l < 4; ++l) {
+      loop_s[l] = arc_length_along(loop[l]);
+      W += loop_s[l].back() / 4.;
+    }
+    const double H = meridian_length;
     const int k = std::min(32, std::max(3, int(std::lround(4. * W / H))));
     std::array<std::vector<std::size_t>, 4> node_at; // loop index of section j's node
-    {
-      std::vector<V> l0;
-      for(std::size_t v : loop[0]) l0.push_back(V(std::uint32_t(v)));
-      const std::vector<double> s = loop_arc_length(m, l0);
-      for(int j = 0; j < k; ++j) node_at[0].push_back(j == 0 ? 0 : at_arc_length(s, 0, s.back() * j / k));
-    }
+    for(int j = 0; j < k; ++j) node_at[0].push_back(j == 0 ? 0 : at_arc_length(loop_s[0], 0, loop_s[0].back() * j / k));
     for(std::size_t l = 1; l < 4; ++l) {
       node_at[l].push_back(0);
       for(int j = 1; j < k; ++j) {
@@ -1384,7 +1379,7 @@ private:
     for(std::size_t l = 0; l < 4; ++l)
       for(int j = 0; j < k; ++j) node_vertex[loop[l][node_at[l][std::size_t(j)]]] = {l, std::size_t(j)};
     std::vector<Embedding> emb;
-    try {
+    try { // an embedding that fails (a map that flips) leaves the generic ring
       for(Mesh& band : bands) {
         const std::vector<std::size_t> bpar = vertex_parents(band);
         std::vector<V> border = border_loop(band);
@@ -1431,8 +1426,6 @@ private:
         }
         emb.push_back(embed_piece_graph(band, border, pg));
       }
-    } catch(const std::out_of_range&) {
-      return std::nullopt;
     } catch(const Internal_error&) {
       return std::nullopt;
     }
@@ -1459,11 +1452,11 @@ private:
   static Layout torus(const TriangleMesh& tm, const Surface_topology_result<TriangleMesh>& topo)
   {
     using namespace internal;
-    if(std::optional<Layout> ring = feature_ring(tm, topo)) return std::move(*ring);
     if(topo.handle_loops.empty()) layout_failure("the torus has no handle loop");
     Mesh m = copy_of(topo.loop_mesh(tm));
     std::vector<std::size_t> meridian;
     for(auto v : topo.handle_loops[0].vertices) meridian.push_back(std::size_t(v));
+    if(std::optional<Layout> ring = feature_ring(m, meridian)) return std::move(*ring);
     std::vector<bool> cut(num_edges(m), false);
     auto mark = [&](std::size_t a, std::size_t b) {
       const auto h = halfedge(V(std::uint32_t(a)), V(std::uint32_t(b)), m);
