@@ -159,6 +159,12 @@ inline int default_minimum_grid_resolution(int grid) { return grid / 2 >= 8 ? gr
 /// quadratic (C1 across knots, what IGA solvers most often take) when the degree is higher.
 inline int default_minimum_spline_degree(int degree) { return std::min(2, degree); }
 
+/// Jacobian samples that the untangling of one build_trivariate_model() run may visit in
+/// all (Untangling_budget): three times the most a valid result has needed (the gear
+/// `pinion.off` split at its edges' midpoints, 3.3e9, valid after the node relocation retry
+/// at 32 samples), about 12 minutes on 2 cores.
+constexpr double default_untangling_budget = 1e10;
+
 /// \ingroup PkgPolycubeIGARef
 /// Everything `build_trivariate_model()` produced.
 template <class Point_3>
@@ -212,6 +218,11 @@ struct Trivariate_model
   /// built again with its nodes relocated (see `node_relocation_retry` in
   /// build_trivariate_model()); `node_relocation.nodes_moved` is 0 if that was not kept.
   bool relocation_retried = false;
+  /// Jacobian samples that the untangling's energy evaluations visited over the whole run,
+  /// and whether that reached `untangling_budget` (build_trivariate_model()), which then
+  /// stopped the untangling.
+  double untangling_work = 0.;
+  bool untangling_budget_exhausted = false;
 
   /// True when every patch's det J is certified positive and the boundary is within
   /// `maximum_boundary_distance` of the mesh.
@@ -246,7 +257,7 @@ inline void append_stage_seconds(std::vector<std::pair<std::string, double>>& to
 template <class TriangleMesh, class NamedParameters>
 std::optional<Trivariate_model<typename Cuboid_decomposition<TriangleMesh>::Point>>
 build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::function<void(const std::string&)>& progress,
-                const Layout_variant& variant, bool untangle_invalid, bool other_phases_follow,
+                Untangling_budget& budget, const Layout_variant& variant, bool untangle_invalid, bool other_phases_follow,
                 const std::vector<typename Cuboid_decomposition<TriangleMesh>::Point>* unless_nodes,
                 bool* untangling_deferred = nullptr)
 {
@@ -269,6 +280,7 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
   // Inner control points moved where det J is poor or negative (Volume_untangling.h).
   volume_defaults.untangle = true;
   Layout_volume_options volume_options = layout_volume_options(np, volume_defaults);
+  volume_options.untangling.budget = &budget; // one for the whole run, retries included
   volume_options.relaxation = Grid_relaxation_options::none(); // the second attempt's (below)
   volume_options.sampling.stretch_rounds = 0;                  // the third attempt's (below)
   // Untangling costs more than building (eight.off: 3 s against 1 s) and cannot repair
@@ -555,6 +567,8 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
                           " patches need it, more than the cost guards allow at this grid";
         else if(r.untangling.rounds == 0 && !r.untangling.pinned_patches.empty())
           not_untangled = "patches " + patch_list(r.untangling.pinned_patches) + " are pinned (det J <= 0 where only the fitted boundary sides set it)";
+        else if(r.untangling.rounds == 0 && r.untangling.out_of_budget)
+          not_untangled = "the untangling budget is spent";
       }
     }
     if(reasons.empty()) {
@@ -614,6 +628,8 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
     model.warnings.push_back("untangling skipped: " + std::to_string(u.patches.size()) +
                              " patches would be optimised, more than Volume_untangling_options::maximum_patches or "
                              "maximum_control_points allow");
+  else if(u.out_of_budget && u.rounds == 0)
+    model.warnings.push_back("not untangled: the untangling budget is spent");
   else if(u.reverted)
     model.warnings.push_back("untangling discarded: it did not raise the smallest det J or cost a patch its certificate");
   else if(!u.patches.empty() && !u.positive_at_samples)
@@ -686,7 +702,7 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
 /// variants of its class (belt phases, corners off steps).
 template <class TriangleMesh, class NamedParameters>
 auto build_with_class_variants(const TriangleMesh& tm, const NamedParameters& np,
-                               const std::function<void(const std::string&)>& progress)
+                               const std::function<void(const std::string&)>& progress, Untangling_budget& budget)
 {
   const int phases = int(option(np, internal_np::belt_phases, 4));
   if(phases < 1 || phases > 8) throw Invalid_input_error("invalid_parameter", "belt_phases must be from 1 to 8");
@@ -697,7 +713,7 @@ auto build_with_class_variants(const TriangleMesh& tm, const NamedParameters& np
   // valid one will do; an invalid result is phase 0's, untangled at the end if asked (so
   // built again, only if its untangling was deferred: the other phases do not need it).
   bool deferred = false;
-  auto model = *internal::build_on_layout(tm, np, progress, {}, untangle_invalid, phases > 1, nullptr, &deferred);
+  auto model = *internal::build_on_layout(tm, np, progress, budget, {}, untangle_invalid, phases > 1, nullptr, &deferred);
   if(model.is_valid()) return model;
   const auto phase0_nodes = internal::node_points(model.layout);
   // A tube cut at two heights: the seam ends, and a corner with them, at a step's end, whose
@@ -708,7 +724,7 @@ auto build_with_class_variants(const TriangleMesh& tm, const NamedParameters& np
   if(model.layout.layout_class == Layout_class::cylinder && option(np, internal_np::step_retry, true)) {
     internal::Layout_variant off_steps;
     off_steps.corners_off_steps = true;
-    auto other = internal::build_on_layout(tm, np, progress, off_steps, false, false, &phase0_nodes);
+    auto other = internal::build_on_layout(tm, np, progress, budget, off_steps, false, false, &phase0_nodes);
     if(!other) return model; // no corner near a step
     if(other->is_valid()) {
       other->warnings.insert(other->warnings.begin(), "the cylinder's section corners are moved off the steps of its cut ends: "
@@ -731,7 +747,7 @@ auto build_with_class_variants(const TriangleMesh& tm, const NamedParameters& np
     const std::string phase = std::to_string(k) + "/8";
     internal::Layout_variant at_phase;
     at_phase.belt_phase = k / 8.;
-    auto other = internal::build_on_layout(tm, np, progress, at_phase, false, false, &phase0_nodes);
+    auto other = internal::build_on_layout(tm, np, progress, budget, at_phase, false, false, &phase0_nodes);
     if(!other) break; // the same layout at every phase
     tried.push_back(phase);
     if(other->is_valid()) {
@@ -748,7 +764,7 @@ auto build_with_class_variants(const TriangleMesh& tm, const NamedParameters& np
     internal::append_stage_seconds(seconds, other->stage_seconds, ", belt phase " + phase);
   }
   if(deferred) { // phase 0 again, untangled; its first build's seconds are already listed
-    model = *internal::build_on_layout(tm, np, progress, {}, true, false, nullptr);
+    model = *internal::build_on_layout(tm, np, progress, budget, {}, true, false, nullptr);
     internal::append_stage_seconds(seconds, model.stage_seconds, ", belt phase 0, untangled");
   }
   if(!tried.empty())
@@ -808,6 +824,10 @@ auto build_with_class_variants(const TriangleMesh& tm, const NamedParameters& np
 /// (Cuboid_decomposition::with_cube_under()), and the volume is built again; kept if its
 /// boundary comes closer, up to this many times; 0: never. `missing_part_cubes` of the
 /// model counts those kept.
+/// `untangling_budget` (default_untangling_budget, 1e10): the Jacobian samples that every
+/// untangling of the run, retries included, may visit in all (Untangling_budget); once they
+/// are spent, the untangling stops, the model says so (`untangling_budget_exhausted`, a
+/// warning) and `untangling_work` counts them. Must be positive; infinity: no limit.
 /// Throws the stages' errors; an invalid layout becomes Internal_error("invalid_layout").
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
 auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values(),
@@ -815,8 +835,20 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
 {
   const int retry_sweeps = int(option(np, internal_np::node_relocation_retry, 2));
   if(retry_sweeps < 0) throw Invalid_input_error("invalid_parameter", "node_relocation_retry must not be negative");
-  auto model = internal::build_with_class_variants(tm, np, progress);
-  if(model.is_valid() || retry_sweeps == 0 || option(np, internal_np::node_relocation_sweeps, 0) > 0) return model;
+  Untangling_budget budget;
+  budget.limit = option(np, internal_np::untangling_budget, default_untangling_budget);
+  if(!(budget.limit > 0.)) throw Invalid_input_error("invalid_parameter", "untangling_budget must be positive");
+  auto finished = [&budget](auto& m) {
+    m.untangling_work = budget.spent;
+    m.untangling_budget_exhausted = budget.exhausted();
+    if(m.untangling_budget_exhausted && !m.is_valid())
+      m.warnings.push_back("the untangling stopped when its budget was spent (" + internal::short_number(budget.spent) +
+                           " Jacobian samples visited, untangling_budget " + internal::short_number(budget.limit) +
+                           "): a larger one lets it go on, at that cost");
+    return std::move(m);
+  };
+  auto model = internal::build_with_class_variants(tm, np, progress, budget);
+  if(model.is_valid() || retry_sweeps == 0 || option(np, internal_np::node_relocation_sweeps, 0) > 0) return finished(model);
   // The decomposition puts nodes where the harmonic cuts and the conformal map say, blind to
   // the corners they make; a node amid a flat face or a spoke along a rim folds a face
   // (mech-holes-shark.off: 8 of 38 patches uncertified on its own nodes; relocated, valid).
@@ -827,14 +859,14 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   relocated.node_relocation_sweeps = retry_sweeps;
   std::optional<std::decay_t<decltype(model)>> other;
   try {
-    other = internal::build_on_layout(tm, np, progress, relocated, false, false, nullptr);
+    other = internal::build_on_layout(tm, np, progress, budget, relocated, false, false, nullptr);
   } catch(const Error& e) {
     model.warnings.push_back("relocating the layout's nodes failed: " + e.reason() + ": " + e.what());
-    return model;
+    return finished(model);
   }
   if(!other) {
     model.warnings.push_back("node relocation was tried too and moved no node");
-    return model;
+    return finished(model);
   }
   if(other->is_valid()) {
     other->relocation_retried = true;
@@ -846,13 +878,13 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     internal::append_stage_seconds(seconds, model.stage_seconds, ", own nodes");
     seconds.insert(seconds.end(), other->stage_seconds.begin(), other->stage_seconds.end());
     other->stage_seconds = std::move(seconds);
-    return std::move(*other);
+    return finished(*other);
   }
   internal::append_stage_seconds(model.stage_seconds, other->stage_seconds, ", nodes relocated");
   model.warnings.push_back("the layout's nodes relocated (" + std::to_string(other->node_relocation.nodes_moved) +
                            " moves) were tried too and gave no valid volume (" +
                            internal::comma_list(other->invalidity_reasons()) + ")");
-  return model;
+  return finished(model);
 }
 
 } // namespace Polycube_IGA

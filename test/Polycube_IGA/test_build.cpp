@@ -20,6 +20,7 @@
 #include <set>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -287,7 +288,9 @@ TEST_CASE("build CLI rejects bad input and bad options without writing", "[build
     {"--degree 2 --min-degree 3", "--min-degree"},
     {"--missing-part-cubes 17", "--missing-part-cubes"},
     {"--sharp-boundary-turn 200", "--sharp-boundary-turn"},
-    {"--relocation-retry -1", "--relocation-retry"}};
+    {"--relocation-retry -1", "--relocation-retry"},
+    {"--untangling-budget 0", "--untangling-budget"},
+    {"--untangling-budget nan", "--untangling-budget"}};
   for(const auto& [options, named] : bad_options) {
     INFO(options);
     r = run_cli("build '" + data("torus.obj") + "' -o '" + xml + "' " + options);
@@ -368,6 +371,50 @@ TEST_CASE("build relocates the layout nodes when no volume on the decomposition 
   for(std::size_t p = 0; p < model.volume.volume.number_of_patches(); ++p)
     CHECK(asked.volume.volume.patch(p).control_points() == model.volume.volume.patch(p).control_points());
   CHECK_THROWS_AS(PI::build_trivariate_model(m, one_grid.node_relocation_retry(-1)), PI::Invalid_input_error);
+}
+
+TEST_CASE("build's untangling shares one budget over the whole run and its retries", "[build][untangling]")
+{
+  // mushroom.off at 16 samples, one grid: valid, its untangling visits some millions of
+  // Jacobian samples. A tenth of that stops the untangling; the run says so and ends the
+  // same way every time. On one grid of 8 without stretch the volume is too far from the
+  // mesh at every attempt, and the untangling of the best invalid result comes last: with
+  // the budget spent by then, it is not untangled and the warnings say why.
+  const Mesh m = load(data("mushroom.off"));
+  const auto one_grid = PI::parameters::grid_resolution(16).maximum_grid_resolution(16).minimum_grid_resolution(16)
+                          .minimum_spline_degree(3).node_relocation_retry(0);
+  const auto full = PI::build_trivariate_model(m, one_grid);
+  CHECK(full.is_valid());
+  REQUIRE(full.untangling_work > 0.);
+  CHECK_FALSE(full.untangling_budget_exhausted);
+  CHECK(full.untangling_work >= full.volume.untangling.work);
+
+  const auto starved = PI::build_trivariate_model(m, one_grid.untangling_budget(full.untangling_work / 10.));
+  CHECK(starved.untangling_budget_exhausted);
+  CHECK(starved.untangling_work >= full.untangling_work / 10.);
+  CHECK(starved.untangling_work < full.untangling_work / 2.);
+  CHECK(starved.volume.untangling.out_of_budget);
+  const auto again = PI::build_trivariate_model(m, one_grid.untangling_budget(full.untangling_work / 10.));
+  CHECK(again.untangling_work == starved.untangling_work);
+  REQUIRE(again.volume.volume.number_of_patches() == starved.volume.volume.number_of_patches());
+  for(std::size_t p = 0; p < again.volume.volume.number_of_patches(); ++p)
+    CHECK(again.volume.volume.patch(p).control_points() == starved.volume.volume.patch(p).control_points());
+
+  const auto far = PI::parameters::grid_resolution(8).maximum_grid_resolution(8).stretch_rounds(0).minimum_spline_degree(3)
+                     .node_relocation_retry(0).untangling_budget(1.);
+  const auto spent = PI::build_trivariate_model(m, far);
+  CHECK_FALSE(spent.is_valid());
+  CHECK(spent.untangling_budget_exhausted);
+  bool said_spent = false, said_larger = false;
+  for(const auto& w : spent.warnings) {
+    said_spent = said_spent || w.find("not untangled: the untangling budget is spent") != std::string::npos;
+    said_larger = said_larger || w.find("a larger one lets it go on") != std::string::npos;
+  }
+  CHECK(said_spent == (spent.volume.untangling.rounds == 0));
+  CHECK(said_larger);
+
+  for(double bad : {0., -1., std::numeric_limits<double>::quiet_NaN()})
+    CHECK_THROWS_AS(PI::build_trivariate_model(m, one_grid.untangling_budget(bad)), PI::Invalid_input_error);
 }
 
 TEST_CASE("build CLI writes the volume on relocated nodes and reports the retry", "[build][cli][relocation]")

@@ -385,6 +385,57 @@ TEST_CASE("untangling asked to stop when a patch is pinned moves nothing, even w
   CHECK(mv.patch(1).control_points() == folded.control_points());
 }
 
+TEST_CASE("a shared untangling budget stops the rounds, counts the samples visited and then moves nothing", "[untangling]")
+{
+  // The folded box of the first case, untangled with no limit, gives the work a full run
+  // takes; a budget of a tenth of it stops the rounds early (the last one overruns it by at
+  // most a round's evaluations), and a second call finds it spent and moves nothing.
+  PI::Tensor_bspline_volume v = box(0.);
+  fold(v, 1, 0.9);
+  PI::Multipatch_volume full = closed(v);
+  const PI::Volume_untangling_result unlimited = PI::untangle_volume(full);
+  REQUIRE(unlimited.positive_at_samples);
+  REQUIRE(unlimited.rounds > 1);
+  REQUIRE(unlimited.work > 0.);
+  CHECK_FALSE(unlimited.out_of_budget);
+  // Every energy evaluation visits every sample of the patch, at least 5^3 (3 Gauss-Lobatto
+  // points per span and direction, 2 spans, ends shared), at least once a round.
+  CHECK(unlimited.work >= 125. * unlimited.rounds);
+
+  PI::Untangling_budget budget;
+  budget.limit = unlimited.work / 10.;
+  PI::Volume_untangling_options o;
+  o.budget = &budget;
+  PI::Multipatch_volume cut_short = closed(v);
+  const PI::Volume_untangling_result first = PI::untangle_volume(cut_short, o);
+  CHECK(first.out_of_budget);
+  CHECK(budget.exhausted());
+  CHECK(first.work == budget.spent);
+  CHECK(first.rounds < unlimited.rounds);
+  CHECK(budget.spent < unlimited.work);
+  for(int s = 1; s <= 6; ++s) CHECK(boundary_points_equal(cut_short.patch(0), v, s));
+
+  const PI::Multipatch_volume before = cut_short;
+  const PI::Volume_untangling_result second = PI::untangle_volume(cut_short, o);
+  CHECK(second.out_of_budget);
+  CHECK(second.rounds == 0);
+  CHECK(second.reverted);
+  CHECK(second.work == 0.);
+  CHECK(second.min_relative_determinant_after == second.min_relative_determinant_before);
+  CHECK(cut_short.patch(0).control_points() == before.patch(0).control_points());
+
+  SECTION("the same budget stops at the same point")
+  {
+    PI::Untangling_budget again;
+    again.limit = budget.limit;
+    o.budget = &again;
+    PI::Multipatch_volume twin = closed(v);
+    PI::untangle_volume(twin, o);
+    CHECK(again.spent == budget.spent);
+    CHECK(twin.patch(0).control_points() == before.patch(0).control_points());
+  }
+}
+
 TEST_CASE("untangling takes a patch positive at every sample but folded between them", "[untangling]")
 {
   // One span: the inner point (1, 1, 1) pushed 1.8 along -x folds the map near that corner,

@@ -26,6 +26,7 @@
 #include <chrono>
 #include <optional>
 #include <iostream>
+#include <limits>
 #include <unistd.h>
 
 namespace polycube_iga_cli {
@@ -105,6 +106,8 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("untangling_passes", V.untangling.passes)
       .member("untangling_stalled", V.untangling.stalled)
       .member("untangling_sliding_points", V.untangling.sliding_points)
+      .member("untangling_work", model.untangling_work)
+      .member("untangling_budget_exhausted", model.untangling_budget_exhausted)
       .member("relaxation_attempted", model.relaxation_attempted)
       .member("relaxed_grids", V.relaxation.sweeps > 0)
       .member("stretch_attempted", model.stretch_attempted)
@@ -228,7 +231,7 @@ int run_build(const Arguments& args)
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
                       "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--min-degree", "--relax-sweeps", "--stretch-rounds",
                       "--sharp-boundary-turn", "--belt-phases", "--relax-arcs", "--relocate-nodes", "--relocation-retry", "--cut-pair-trials", "--missing-part-cubes",
-                      "--small-handle-length"});
+                      "--small-handle-length", "--untangling-budget"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
   if(out.empty()) throw PI::Invalid_input_error("bad_arguments", "build needs -o OUT.xml");
@@ -251,6 +254,11 @@ int run_build(const Arguments& args)
   const int pair_trials = positive_option(a, "--cut-pair-trials", PI::default_cut_pair_trials, 1, 1000);
   const int missing_part_cubes = positive_option(a, "--missing-part-cubes", 2, 0, 16);
   const double small_handle_length = fraction_option(a, "--small-handle-length", 0., 0., 0.5);
+  // In billions of Jacobian samples (Untangling_budget); "inf": no limit.
+  const double untangling_budget =
+    a.get("--untangling-budget", "") == "inf"
+      ? std::numeric_limits<double>::infinity()
+      : 1e9 * fraction_option(a, "--untangling-budget", PI::default_untangling_budget / 1e9, 1e-6, 1e12);
   const bool verbose = !a.has("--quiet") && isatty(2);
   auto progress = [&](const std::string& stage) {
     if(verbose) std::cerr << "polycube_iga: " << stage << "...\n";
@@ -277,7 +285,7 @@ int run_build(const Arguments& args)
       .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid).minimum_spline_degree(min_degree)
       .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn).belt_phases(belt_phases)
       .step_retry(!a.has("--no-step-retry")).arc_relaxation_sweeps(arc_sweeps).node_relocation_sweeps(node_sweeps).node_relocation_retry(retry_sweeps).cut_pair_trials(pair_trials)
-      .missing_part_cubes(missing_part_cubes).balance_pants_corners(a.has("--balance-corners"))
+      .missing_part_cubes(missing_part_cubes).balance_pants_corners(a.has("--balance-corners")).untangling_budget(untangling_budget)
       // An invalid volume is not written without --allow-invalid: no time spent improving it.
       .untangle_invalid_result(a.has("--allow-invalid")),
     progress);
@@ -352,7 +360,7 @@ Register_command build_command("build", {
   "                          [--sharp-boundary-turn D] [--belt-phases K] [--no-step-retry] [--relax-arcs K]\n"
   "                          [--relocate-nodes K] [--relocation-retry K] [--cut-pair-trials K]\n"
   "                          [--missing-part-cubes K] [--small-handle-length F] [--no-untangle]\n"
-  "                          [--balance-corners] [--allow-invalid]\n"
+  "                          [--untangling-budget G] [--balance-corners] [--allow-invalid]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
   "  --layout-vtu L    the polycube layout on the surface: patches, arcs, nodes\n"
@@ -407,6 +415,10 @@ Register_command build_command("build", {
   "                    from it while all of it is near the mesh: a protrusion the patch's map\n"
   "                    shrinks), give that patch a cube of its own with its bottom there and\n"
   "                    build again, up to K times while it helps (default 2; 0: never)\n"
+  "  --untangling-budget G  billions of Jacobian samples that all the untangling of the run,\n"
+  "                    retries included, may visit (default 10, about 12 minutes on 2 cores;\n"
+  "                    inf: no limit); once spent it stops, and the report says so\n"
+  "                    (untangling_work, untangling_budget_exhausted)\n"
   "  --small-handle-length F  close first every handle whose shortest handle or tunnel loop is\n"
   "                    shorter than F times the bounding-box diagonal (topological noise of a\n"
   "                    scan: no grid resolves it); the volume must still be within --max-distance\n"

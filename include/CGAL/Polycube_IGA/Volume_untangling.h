@@ -37,6 +37,17 @@
 namespace CGAL {
 namespace Polycube_IGA {
 
+/// Work that the untangle_volume() calls of one run share: the Jacobian samples their
+/// energy evaluations visit. It bounds a run that cannot succeed (a CAD ring remeshed to
+/// 5,796 faces spent 13 minutes untangling grids no rounds made valid) by a count, not by
+/// seconds, so the result is the same on every machine and thread count.
+struct Untangling_budget
+{
+  double limit = std::numeric_limits<double>::infinity(); ///< samples the calls may visit in all
+  double spent = 0.;                                      ///< samples visited so far
+  bool exhausted() const { return !(spent < limit); }
+};
+
 /// Options of untangle_volume().
 struct Volume_untangling_options
 {
@@ -84,6 +95,11 @@ struct Volume_untangling_options
   /// of build_trivariate_model()): a pinned patch rules that out, so with this set
   /// untangle_volume() stops before its rounds, `reverted`, the volume unchanged.
   bool stop_when_pinned = false;
+  /// Shared with other calls (nullptr: no limit). A call that finds it exhausted moves
+  /// nothing (`out_of_budget`, `reverted`); rounds stop once it is (the last one has as many
+  /// L-BFGS iterations as it has evaluations left, and its line searches may overrun it a
+  /// little), and what they reached is kept on the usual terms.
+  Untangling_budget* budget = nullptr;
   /// Threads for the per-patch work (energies, gradients, certificates); 0: one per core the
   /// process may run on (internal::worker_count()). The result does not depend on it:
   /// per-patch sums are combined in patch order.
@@ -110,6 +126,11 @@ struct Volume_untangling_result
   /// Rounds ended early: a sample stayed inverted and the smallest det stopped rising
   /// (Volume_untangling_options::stall_window).
   bool stalled = false;
+  /// The budget (Volume_untangling_options::budget) was exhausted before the call or ended
+  /// its rounds.
+  bool out_of_budget = false;
+  /// Jacobian samples the energy evaluations of this call visited (what it took of the budget).
+  double work = 0.;
   /// Optimised patches whose det J is not certified positive afterwards.
   std::vector<std::size_t> uncertified_patches;
   int passes = 1; ///< untangle_volume() calls merged here (add_pass())
@@ -126,6 +147,8 @@ struct Volume_untangling_result
     sliding_points = std::max(sliding_points, next.sliding_points);
     rounds += next.rounds, iterations += next.iterations;
     stalled = stalled || next.stalled;
+    out_of_budget = out_of_budget || next.out_of_budget;
+    work += next.work;
     min_relative_determinant_after = next.min_relative_determinant_after;
     positive_at_samples = next.positive_at_samples;
     pinned_patches = next.pinned_patches;
@@ -632,8 +655,10 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
   // Per optimised patch: its terms of the energy, sample by sample, and its gradient.
   std::vector<std::vector<double>> terms(r.patches.size());
   std::vector<std::vector<Vector3d>> patch_gradient(r.patches.size());
+  double evaluation_samples = 0.; // of the last energy evaluation
   auto energy = [&](const Eigen::VectorXd& y, Eigen::VectorXd& g) {
     load(y);
+    evaluation_samples = 0.;
     internal::parallel_for(r.patches.size(), threads, [&](std::size_t t, unsigned worker) {
       const std::size_t c = r.patches[t];
       std::vector<Eigen::Matrix3d>&J = scratch[worker].J, &G = scratch[worker].G;
@@ -662,6 +687,7 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
     for(std::size_t t = 0; t < r.patches.size(); ++t) {
       const std::size_t c = r.patches[t];
       for(double e : terms[t]) E += e;
+      evaluation_samples += double(terms[t].size());
       for(std::size_t k = 0; k < patch_gradient[t].size(); ++k) {
         const long u = unknown[offset[c] + k];
         if(u >= 0) g.segment<3>(Eigen::Index(3 * u)) += patch_gradient[t][k];
@@ -672,6 +698,8 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
         const Vector3d gu = g.segment<3>(Eigen::Index(3 * u));
         g.segment<3>(Eigen::Index(3 * u)) = gu - slide[u] * slide[u].dot(gu);
       }
+    r.work += evaluation_samples;
+    if(o.budget) o.budget->spent += evaluation_samples;
     return E;
   };
 
@@ -690,6 +718,14 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
     std::vector<double> smallest; // min_det after each round
     const std::size_t window = std::size_t(std::max(1, o.stall_window));
     for(int round = 0; round < o.maximum_rounds; ++round) {
+      if(o.budget && o.budget->exhausted()) {
+        r.out_of_budget = true;
+        break;
+      }
+      // The last round the budget allows: as many iterations as evaluations it has left.
+      lo.maximum_iterations = o.iterations_per_round;
+      if(o.budget && evaluation_samples > 0.)
+        lo.maximum_iterations = int(std::max(1., std::min(double(lo.maximum_iterations), (o.budget->limit - o.budget->spent) / evaluation_samples)));
       const internal::Lbfgs_result lr = internal::lbfgs_minimize(energy, x, lo);
       ++r.rounds;
       r.iterations += lr.iterations;
@@ -736,7 +772,8 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
   };
   const Smallest before_rounds = measure(x, &r.pinned_patches);
   r.min_relative_determinant_before = before_rounds.all;
-  if(o.stop_when_pinned && !r.pinned_patches.empty()) {
+  r.out_of_budget = o.budget && o.budget->exhausted();
+  if((o.stop_when_pinned && !r.pinned_patches.empty()) || r.out_of_budget) {
     r.min_relative_determinant_after = before_rounds.all;
     r.reverted = true;
     uncertified_before();
@@ -749,7 +786,7 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
   // still not certified get one more Gauss-Lobatto point per span (up to 5) and the rounds
   // go on from there.
   std::vector<std::size_t> uncertified = uncertified_patches();
-  for(int q = o.points_per_span + 1; q <= 5 && min_det > 0.; ++q) {
+  for(int q = o.points_per_span + 1; q <= 5 && min_det > 0. && !r.out_of_budget; ++q) {
     std::vector<std::size_t> denser;
     for(std::size_t c : uncertified)
       if(std::find(r.pinned_patches.begin(), r.pinned_patches.end(), c) == r.pinned_patches.end()) denser.push_back(c);

@@ -67,7 +67,8 @@ namespace Polycube_IGA {
   X(arc_relaxation_sweeps_t, arc_relaxation_sweeps)                               \
   X(node_relocation_sweeps_t, node_relocation_sweeps)                             \
   X(node_relocation_retry_t, node_relocation_retry)                               \
-  X(missing_part_cubes_t, missing_part_cubes)
+  X(missing_part_cubes_t, missing_part_cubes)                                     \
+  X(untangling_budget_t, untangling_budget)
 
 namespace internal_np {
 #define CGAL_POLYCUBE_IGA_DECLARE_TAG(TAG, NAME) enum TAG { NAME };
