@@ -194,6 +194,7 @@ Row run_case(const Options& opt, const Case& c)
     {"volume_untangling_seconds", V.untangling_seconds},
     {"untangled_patches", V.untangling.skipped ? 0. : double(V.untangling.patches.size())},
     {"untangling_skipped", V.untangling.skipped ? 1. : 0.},
+    {"untangling_work", best.untangling_work},
     {"volume_quality_seconds", row.quality},
     {"quality_evaluated", row.quality_evaluated ? 1.0 : 0.0},
     {"certified_valid", row.certified ? 1.0 : 0.0},
