@@ -764,6 +764,52 @@ TEST_CASE("build moves a femur's belt nodes when its first layout gives no valid
   CHECK_THROWS_AS(PI::build_trivariate_model(m, PI::parameters::belt_phases(0)), PI::Invalid_input_error);
 }
 
+TEST_CASE("build lays a bone out as a chain of cuboids that is valid at the first grid and nearer the mesh than one cube", "[build][chain]")
+{
+  // A capsule 8 long between its ends' centres, radius 1, each end swollen by 80% like a
+  // bone's: a chain of 4 cube-like cuboids, valid at once (0.47% of the diagonal off). As
+  // one cube its length goes into six long faces round the belt, and on the first grid its
+  // boundary is 1.6% off.
+  std::istringstream in(capsule_off(1., 8., 32, 0.8));
+  Mesh m;
+  REQUIRE(CGAL::IO::read_OFF(in, m));
+  const auto chain = PI::build_trivariate_model(m);
+  CHECK(chain.sphere_chain);
+  CHECK(chain.layout.layout_class == PI::Layout_class::sphere);
+  CHECK(chain.layout.cuboids.size() >= 3);
+  CHECK(chain.grid_attempts == std::vector<int>{16});
+  check_valid_volume(chain, 0.02, 0.01);
+  // One cube, on the first grid alone; the model says which layout it has.
+  const auto cube = PI::build_trivariate_model(m, PI::parameters::sphere_chain(false)
+                                                    .maximum_grid_resolution(16)
+                                                    .minimum_grid_resolution(16)
+                                                    .minimum_spline_degree(3)
+                                                    .belt_phases(1)
+                                                    .untangle_invalid_result(false)
+                                                    .node_relocation_retry(0));
+  CHECK_FALSE(cube.sphere_chain);
+  CHECK(cube.layout.cuboids.size() == 1);
+  CHECK(cube.volume.distance.relative > 2. * chain.volume.distance.relative);
+}
+
+TEST_CASE("build CLI reports a chain layout and --no-chain lays one cube", "[build][cli][chain]")
+{
+  const std::string mesh = write_text("capsule.off", capsule_off(1., 8., 32));
+  const std::string xml = temp_path("capsule.xml"), report = temp_path("capsule.json");
+  Cli_result r = run_cli("build '" + mesh + "' -o '" + xml + "' --report '" + report + "' --quiet");
+  CHECK(r.exit_code == 0);
+  CHECK(exists(xml));
+  std::string text = slurp(report);
+  CHECK(text.find("\"sphere_chain\":true") != std::string::npos);
+  CHECK(text.find("\"layout_class\":\"sphere\"") != std::string::npos);
+  r = run_cli("build '" + mesh + "' -o '" + xml + "' --report '" + report +
+              "' --no-chain --max-grid 16 --min-grid 16 --min-degree 3 --belt-phases 1 --relocation-retry 0 --allow-invalid --quiet");
+  CHECK(r.exit_code == 0);
+  text = slurp(report);
+  CHECK(text.find("\"sphere_chain\":false") != std::string::npos);
+  CHECK(text.find("\"cuboids\":1,") != std::string::npos);
+}
+
 TEST_CASE("build does not untangle a finer grid that cannot become valid, and says why", "[build]")
 {
   // head.off at 8 samples, retried at 16, with its eye holes' tips left sharp (rounded, the

@@ -167,6 +167,55 @@ TEST_CASE("cuboid decomposition of a box lays the cube on the box's own edges", 
   }
 }
 
+TEST_CASE("sphere_chain lays a long closed surface out as a chain of cube-like cuboids between its ends", "[cuboid]")
+{
+  // A capsule of radius 1, 8 long between its ends' centres (10 in all, 6.3 round), each
+  // end's cap a surface patch round its pole. round(4 L / P) cuboids, L the seam between the
+  // caps (about 8.5) and P their borders' mean length (4.5, 46 degrees round the ends): 8 or
+  // so, each about as long as its section is wide.
+  std::istringstream in(capsule_off(1., 8., 48));
+  Mesh m;
+  REQUIRE(CGAL::IO::read_OFF(in, m));
+  const Layout L = PI::Cuboid_decomposition<Mesh>()(m, PI::parameters::sphere_chain(true));
+  CHECK(L.layout_class == PI::Layout_class::sphere);
+  check_layout(m, L);
+  const std::size_t k = L.cuboids.size();
+  CHECK(k >= 6);
+  CHECK(k <= 10);
+  CHECK(L.nodes.size() == 4 * (k + 1));
+  CHECK(L.number_of_surface_patches() == 4 * k + 2);
+  CHECK(L.interfaces().size() == k - 1);
+  // Each pole lies inside a surface patch with no node near it: the cap round it.
+  for(double z : {-5., 5.}) {
+    std::size_t pole = num_vertices(L.mesh);
+    for(auto v : vertices(L.mesh))
+      if(L.mesh.point(v) == Point(0., 0., z)) pole = std::size_t(v);
+    REQUIRE(pole < num_vertices(L.mesh));
+    for(auto n : L.nodes) CHECK(std::sqrt(CGAL::squared_distance(L.mesh.point(n), Point(0., 0., z))) > 0.5);
+  }
+  // Cube-like: each cuboid is about as long along the capsule as it is across.
+  for(const auto& c : L.cuboids) {
+    double z0 = 1e9, z1 = -1e9, r = 0.;
+    for(auto n : c.nodes) {
+      const Point& x = L.mesh.point(L.nodes[n]);
+      z0 = std::min(z0, x.z());
+      z1 = std::max(z1, x.z());
+      r += std::hypot(x.x(), x.y()) / 8.;
+    }
+    CHECK(z1 - z0 > 0.5 * r * std::sqrt(2.));
+    CHECK(z1 - z0 < 3. * r * std::sqrt(2.));
+  }
+  // The default, and shapes that are not long (a sphere) or are boxes, stay one cube.
+  CHECK(decompose(m).cuboids.size() == 1);
+  for(const char* name : {"sphere.off", "cube-meshed.off"}) {
+    INFO(name);
+    const Mesh short_one = load(data(name));
+    const Layout S = PI::Cuboid_decomposition<Mesh>()(short_one, PI::parameters::sphere_chain(true));
+    CHECK(S.cuboids.size() == 1);
+    CHECK(S.number_of_surface_patches() == 6);
+  }
+}
+
 TEST_CASE("cuboid decomposition of a disk is one capped cube", "[cuboid]")
 {
   const Mesh m = load(data("mushroom.off"));

@@ -187,6 +187,42 @@ inline std::string blade_off(double a, double b, double length, int around, int 
   return off_text(points, tris);
 }
 
+/// A closed capsule along z: a tube of radius r, `length` long between the centres of its
+/// two hemispherical ends, `around` vertices round it (a multiple of 4) and rings about as
+/// far apart as they are round; with `bulb` > 0 each end swells like a bone's, by up to that
+/// fraction of r.
+inline std::string capsule_off(double r, double length, int around, double bulb = 0.)
+{
+  std::vector<std::array<double, 3>> points;
+  std::vector<Polygon> tris;
+  std::vector<std::array<double, 2>> profile; // (radius, z), poles excluded
+  const int quarter = around / 4;
+  const int rings = std::max(2, int(std::lround(length / (2 * M_PI * r / around))));
+  for(int i = 1; i <= quarter; ++i) profile.push_back({r * std::sin(M_PI / 2 * i / quarter), -length / 2 - r * std::cos(M_PI / 2 * i / quarter)});
+  for(int i = 1; i < rings; ++i) profile.push_back({r, -length / 2 + length * i / rings});
+  for(int i = quarter; i >= 1; --i) profile.push_back({r * std::sin(M_PI / 2 * i / quarter), length / 2 + r * std::cos(M_PI / 2 * i / quarter)});
+  points.push_back({0., 0., -length / 2 - r});
+  for(const auto& rz : profile) {
+    const double swell = 1. + bulb * std::exp(-std::pow((std::abs(rz[1]) - length / 2) / r, 2));
+    for(int j = 0; j < around; ++j) {
+      const double t = 2 * M_PI * j / around;
+      points.push_back({swell * rz[0] * std::cos(t), swell * rz[0] * std::sin(t), rz[1]});
+    }
+  }
+  points.push_back({0., 0., length / 2 + r});
+  const std::size_t top = points.size() - 1, n = profile.size();
+  auto id = [&](std::size_t k, int j) { return 1 + k * std::size_t(around) + std::size_t((j + around) % around); };
+  for(int j = 0; j < around; ++j) {
+    tris.push_back({0, id(0, j + 1), id(0, j)});
+    tris.push_back({top, id(n - 1, j), id(n - 1, j + 1)});
+    for(std::size_t k = 0; k + 1 < n; ++k) {
+      tris.push_back({id(k, j), id(k, j + 1), id(k + 1, j + 1)});
+      tris.push_back({id(k, j), id(k + 1, j + 1), id(k + 1, j)});
+    }
+  }
+  return off_text(points, tris);
+}
+
 struct Cli_result
 {
   int exit_code = -1;

@@ -19,7 +19,8 @@
 // by arc length.
 //
 // chi >= 0 (left out by the reference): a sphere is split into two disks by the bisector of
-// two far points and becomes one cube (6 belt nodes, one cube corner inside each disk); a
+// two far points and becomes one cube (6 belt nodes, one cube corner inside each disk), or,
+// asked (`sphere_chain`) and long enough, a chain of cuboids between caps at those points; a
 // disk becomes one cube whose top is the boundary loop; a cylinder, cut open along a
 // shortest path between its loops, becomes a chain of cuboids in a rectangle; a torus, cut
 // along its handle loop (meridian) and a closed seam crossing it once, becomes a ring of at
@@ -37,6 +38,7 @@
 #include <CGAL/Polycube_IGA/internal/bbox_diagonal.h>
 #include <CGAL/Polycube_IGA/internal/feature_curves.h>
 #include <CGAL/Polycube_IGA/internal/layout_assembly.h>
+#include <CGAL/Polycube_IGA/internal/level_set_measures.h>
 #include <CGAL/Polycube_IGA/internal/loop_corners.h>
 #include <CGAL/Polycube_IGA/internal/mesh_graph.h>
 #include <CGAL/Polycube_IGA/internal/mesh_refinement.h>
@@ -52,6 +54,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -395,7 +398,9 @@ inline Piece_graph disk_graph(const std::array<std::size_t, 4>& corner, double a
 /// midpoint subdivisions of the whole mesh when a cut or arc finds no room), `belt_phase`
 /// (default 0, in [0, 1): on a closed genus-0 surface, how far the six belt nodes are moved
 /// along the belt, as a fraction of the zigzag's period, a third of the belt),
-/// `corners_off_steps` (default false: on a cylinder, section corners that the seam puts within
+/// `sphere_chain` (default false: a closed genus-0 surface is one cube; true: one long
+/// enough for three cube-like cuboids or more, and not a box, is a chain of them between caps
+/// round its two farthest points, sphere_chain()), `corners_off_steps` (default false: on a cylinder, section corners that the seam puts within
 /// 1/16 of a loop of a step of the loop, where it turns by over 45 degrees within the surface,
 /// move off it; internal::clear_of_steps()), `balance_pants_corners` (default false: each
 /// pants half's four centre nodes stay where Tutte's rule puts them in its convex map; true
@@ -409,6 +414,7 @@ public:
   using Mesh = CGAL::Surface_mesh<Point>;
   using Layout = Polycube_layout<Point>;
   using V = typename Mesh::Vertex_index;
+  using F = typename Mesh::Face_index;
 
   template <class NamedParameters = parameters::Default_named_parameters>
   Layout operator()(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values()) const
@@ -419,6 +425,7 @@ public:
     const double belt_phase = double(option(np, internal_np::belt_phase, 0.));
     const bool off_steps = option(np, internal_np::corners_off_steps, false);
     const bool balance = option(np, internal_np::balance_pants_corners, false);
+    const bool chain = option(np, internal_np::sphere_chain, false);
     if(!(belt_phase >= 0. && belt_phase < 1.)) throw Invalid_input_error("invalid_parameter", "belt_phase must be in [0, 1)");
     Surface_topology_result<TriangleMesh> topo = internal::given_or_computed_topology(tm, get_parameter(np, internal_np::surface_topology));
     // Where a boundary is too coarse for its corners or a half has no room for its arcs, the
@@ -440,7 +447,7 @@ public:
     for(int attempt = 0;; ++attempt) {
       const TriangleMesh& mesh = refined ? *refined : tm;
       try {
-        Layout L = pd ? pants_layout(tm, *pd, balance) : layout_of(mesh, topo, belt_phase, off_steps);
+        Layout L = pd ? pants_layout(tm, *pd, balance) : layout_of(mesh, topo, belt_phase, off_steps, chain);
         // A cube's bottom can be a protrusion again (a long one): a few rounds.
         for(int round = 0; pd && round < 8; ++round) {
           const std::size_t cuboids = L.cuboids.size();
@@ -484,11 +491,11 @@ public:
 private:
   /// The classes with Euler characteristic >= 0, which have no pants (item 3 of the issue).
   static Layout layout_of(const TriangleMesh& tm, const Surface_topology_result<TriangleMesh>& topo, double belt_phase,
-                          bool off_steps)
+                          bool off_steps, bool chain)
   {
     const int g = topo.genus;
     const std::size_t b = topo.number_of_boundary_loops();
-    if(g == 0 && b == 0) return sphere(copy_of(tm), belt_phase);
+    if(g == 0 && b == 0) return sphere(copy_of(tm), belt_phase, chain);
     if(g == 0 && b == 1) return disk(copy_of(tm));
     if(g == 0 && b == 2) return cylinder(copy_of(tm), off_steps);
     return torus(tm, topo);
@@ -715,11 +722,14 @@ private:
   /// `phase`: the belt's zigzag and its six nodes are moved along the belt by this fraction
   /// of the zigzag's period (a third of the belt); which cube corners land in hollows or on
   /// ridges depends on it (femurs S014, S018, S027 of the population: invalid at 0, valid at
-  /// 1/8, 1/8 and 2/8).
-  static Layout sphere(Mesh m, double phase = 0.)
+  /// 1/8, 1/8 and 2/8). With `chain`, a long surface that is not a box is laid out as a
+  /// chain of cuboids (sphere_chain()).
+  static Layout sphere(Mesh m, double phase = 0., bool chain = false)
   {
     using namespace internal;
     if(std::optional<Layout> box = feature_cube(m)) return std::move(*box);
+    if(chain)
+      if(std::optional<Layout> L = sphere_chain(m)) return std::move(*L);
     Mesh_graph<Mesh> g(m, get(CGAL::vertex_point, m));
     // Two far points by a double sweep; the bisector of their distance fields splits the
     // sphere into two connected vertex sets (every vertex reaches its source inside its set).
@@ -887,6 +897,119 @@ private:
     return finish_layout(std::move(gl.mesh), bld, Layout_class::sphere, 0, 0, 0);
   }
 
+  /// A closed genus-0 surface long enough for a chain of three or more cube-like cuboids (a
+  /// bone, a capsule) laid out as one: a cap around each of its two farthest points (double
+  /// sweep) is an end face, and the tube between them is laid out as strip() lays a
+  /// cylinder's. sphere()'s one cube puts a long shape's length into the six faces round its
+  /// belt, which are then long strips. Empty when the shape is not that long or its caps
+  /// are not disks.
+  static std::optional<Layout> sphere_chain(Mesh m)
+  {
+    using namespace internal;
+    Mesh_graph<Mesh> g(m, get(CGAL::vertex_point, m));
+    auto farthest = [](const std::vector<double>& d) { return int(std::max_element(d.begin(), d.end()) - d.begin()); };
+    const int p = farthest(distances_from<Point>(g, {0}));
+    const std::vector<double> dp = distances_from<Point>(g, {p});
+    const int q = farthest(dp);
+    const std::vector<double> dq = distances_from<Point>(g, {q});
+    const double D = dp[std::size_t(q)];
+    // Each cap is the far face of the chain's end cube. Such a face on a round end (its
+    // corners 54.7 degrees from the pole) holds 1.61 times the square of a quarter of its
+    // border's length, a flat end's disk 1.27 times: the cap is the first sublevel set (of 64
+    // up to D/2) that holds 1.5 times, 46 degrees round a round end, just past a flat one's rim.
+    auto cap_radius = [&](const std::vector<double>& d) {
+      for(int i = 1; i <= 64; ++i) {
+        const double a = 0.5 * D * i / 64.;
+        const Level_set_measure c = level_set_measure(g.position, g.face_vertices, d, a);
+        if(c.sublevel_area >= 1.5 * (c.level_length / 4.) * (c.level_length / 4.)) return a;
+      }
+      return 0.;
+    };
+    const double ap = cap_radius(dp), aq = cap_radius(dq);
+    if(!(ap > 0. && aq > 0. && ap + aq < 0.8 * D)) return std::nullopt;
+    // A cap: the faces wholly within its radius that are joined by edges to those at its
+    // point, with the holes they leave (a scan's noise) filled: every face that the far
+    // point's faces do not reach round it. The cut follows mesh edges.
+    std::vector<int> face_label(num_faces(m), 1);
+    auto faces_at = [&](int v) {
+      std::vector<std::size_t> out;
+      for(auto f : CGAL::faces_around_target(halfedge(V(std::uint32_t(v)), m), m))
+        if(f != Mesh::null_face()) out.push_back(std::size_t(f));
+      return out;
+    };
+    auto flood = [&](const std::vector<std::size_t>& seeds, const std::function<bool(std::size_t)>& allowed) {
+      std::vector<bool> reached(num_faces(m), false);
+      std::vector<std::size_t> stack;
+      for(std::size_t f : seeds)
+        if(allowed(f) && !reached[f]) reached[f] = true, stack.push_back(f);
+      while(!stack.empty()) {
+        const auto f = F(std::uint32_t(stack.back()));
+        stack.pop_back();
+        for(auto h : CGAL::halfedges_around_face(halfedge(f, m), m)) {
+          const auto o = face(opposite(h, m), m);
+          if(o != Mesh::null_face() && allowed(std::size_t(o)) && !reached[o]) reached[o] = true, stack.push_back(std::size_t(o));
+        }
+      }
+      return reached;
+    };
+    for(int end = 0; end < 2; ++end) {
+      const std::vector<double>& d = end == 0 ? dp : dq;
+      const double a = end == 0 ? ap : aq;
+      const std::vector<bool> inside = flood(faces_at(end == 0 ? p : q), [&](std::size_t f) {
+        for(auto v : vertices_around_face(halfedge(F(std::uint32_t(f)), m), m))
+          if(!(d[v] < a)) return false;
+        return true;
+      });
+      const std::vector<bool> outside = flood(faces_at(end == 0 ? q : p), [&](std::size_t f) { return !inside[f]; });
+      for(std::size_t f = 0; f < num_faces(m); ++f)
+        if(!outside[f]) {
+          if(face_label[f] != 1) return std::nullopt; // the caps overlap
+          face_label[f] = 2 * end;
+        }
+    }
+    std::vector<bool> cut(num_edges(m), false);
+    for(auto e : edges(m)) {
+      const auto h = halfedge(e, m);
+      cut[e] = face_label[face(h, m)] != face_label[face(opposite(h, m), m)];
+    }
+    std::vector<std::vector<V>> loops; // the tube's two border loops, as vertices of m
+    {
+      const std::vector<Mesh> pieces = cut_into_pieces(m, cut);
+      if(pieces.size() != 3) return std::nullopt;
+      std::size_t one_loop = 0;
+      for(const Mesh& piece : pieces) {
+        const auto border = all_border_loops<Point>(piece);
+        if(border.size() == 1) ++one_loop;
+        if(border.size() != 2) continue;
+        const std::vector<std::size_t> par = vertex_parents(piece);
+        for(const auto& l : border) {
+          loops.emplace_back();
+          for(V v : l) loops.back().push_back(V(std::uint32_t(par[v])));
+        }
+      }
+      if(one_loop != 2 || loops.size() != 2) return std::nullopt;
+    }
+    const std::vector<int> path = seam_between(g, loops, loops[0], loops[1]);
+    if(path.size() < 2) return std::nullopt;
+    const std::vector<std::size_t> seam(path.begin(), path.end());
+    double W = 0.;
+    for(std::size_t i = 0; i + 1 < seam.size(); ++i) {
+      const V a(std::uint32_t(seam[i])), b(std::uint32_t(seam[i + 1]));
+      W += edge_length(m, a, b);
+      cut[edge(halfedge(a, b, m).first, m)] = true;
+    }
+    const double H = 0.5 * (loop_arc_length(m, loops[0]).back() + loop_arc_length(m, loops[1]).back());
+    // Two cuboids split the shape at its middle as the cube's belt does: femur_S025.ply as a
+    // chain of two is too far from the mesh at every grid, as one cube valid at 32 samples.
+    if(std::lround(4. * W / H) < 3) return std::nullopt;
+    try {
+      return strip(std::move(m), cut, seam, rotated_to(loops[0], seam.front()), rotated_to(loops[1], seam.back()), false, 0, 0,
+                   std::nullopt, true);
+    } catch(const Internal_error&) {
+      return std::nullopt;
+    }
+  }
+
   // ---------------------------------------------------------------- disk -------------
   static Layout disk(Mesh m)
   {
@@ -926,12 +1049,14 @@ private:
   /// The sections of a chain (caps at both ends) or ring (interfaces only, `section.back()`
   /// the same nodes as `section.front()`) of cuboids, each section's four nodes in cyclic
   /// order round it, and the cuboids between consecutive sections.
-  static void add_sections(internal::Layout_builder& bld, const std::vector<std::array<std::size_t, 4>>& section, bool ring)
+  static void add_sections(internal::Layout_builder& bld, const std::vector<std::array<std::size_t, 4>>& section, bool ring,
+                           bool closed_ends = false)
   {
     const int k = int(section.size()) - 1;
     for(int j = 0; j < (ring ? k : k + 1); ++j) {
-      const bool cap = !ring && (j == 0 || j == k);
-      bld.interior.push_back({int(cap ? Layout::CAP : Layout::INTERFACE), section[std::size_t(j)]});
+      const bool end = !ring && (j == 0 || j == k);
+      if(end && closed_ends) continue; // a surface patch: the arcs round it find it
+      bld.interior.push_back({int(end ? Layout::CAP : Layout::INTERFACE), section[std::size_t(j)]});
     }
     for(int c = 0; c < k; ++c) {
       std::array<std::size_t, 8> cube{};
@@ -949,28 +1074,35 @@ private:
   /// are the straight lines joining the three level nodes of loop 1 to those of loop 2 (the
   /// seam itself is the fourth) and the sections are vertical lines at j/k of the seam's
   /// length. The level nodes are `levels` (mesh vertices on loop 1 and on loop 2) if given,
-  /// else at 1/4, 1/2, 3/4 of each loop's length from the seam.
+  /// else at 1/4, 1/2, 3/4 of each loop's length from the seam. With `closed_ends`, `m` is
+  /// a closed surface and `cut` also cuts off the two caps that loops 1 and 2 bound: they
+  /// become the chain's end faces, surface patches (sphere_chain()).
   static Layout strip(Mesh m, const std::vector<bool>& cut, const std::vector<std::size_t>& seam,
                       const std::vector<std::size_t>& loop1, const std::vector<std::size_t>& loop2, bool ring, int genus,
                       std::size_t boundary_loops,
-                      const std::optional<std::array<std::array<std::size_t, 3>, 2>>& levels = std::nullopt)
+                      const std::optional<std::array<std::array<std::size_t, 3>, 2>>& levels = std::nullopt,
+                      bool closed_ends = false)
   {
     using namespace internal;
     std::vector<Mesh> pieces = cut_into_pieces(m, cut);
-    if(pieces.size() != 1) layout_failure("cutting along the seam does not leave one disk");
-    Mesh& piece = pieces[0];
-    const std::vector<std::size_t> par = vertex_parents(piece);
-    // Start the border at the copy of seam[0] followed by seam[1].
+    if(pieces.size() != (closed_ends ? 3 : 1)) layout_failure("cutting along the seam does not leave one disk");
+    // The strip is the piece whose border has the copy of seam[0] followed by seam[1]; the
+    // border starts there.
+    std::size_t tube = pieces.size();
     V start;
-    {
-      const std::vector<V> any = border_loop(piece);
+    for(std::size_t k = 0; k < pieces.size() && tube == pieces.size(); ++k) {
+      const std::vector<std::size_t> pk = vertex_parents(pieces[k]);
+      const std::vector<V> any = border_loop(pieces[k]);
       for(std::size_t i = 0; i < any.size(); ++i)
-        if(par[any[i]] == seam[0] && par[any[(i + 1) % any.size()]] == seam[1]) {
+        if(pk[any[i]] == seam[0] && pk[any[(i + 1) % any.size()]] == seam[1]) {
           start = any[i];
+          tube = k;
           break;
         }
-      if(start == V()) layout_failure("the seam is not on the border of the cut disk");
     }
+    if(tube == pieces.size()) layout_failure("the seam is not on the border of the cut disk");
+    Mesh& piece = pieces[tube];
+    const std::vector<std::size_t> par = vertex_parents(piece);
     const std::vector<V> loop = border_loop(piece, start);
     const std::size_t n = loop.size(), ms = seam.size() - 1;
     for(std::size_t i = 0; i <= ms; ++i)
@@ -1067,9 +1199,9 @@ private:
     }
     for(int j = 1; j < k; ++j) {
       section[std::size_t(j)][0] = bld.node(seam[seam_node[std::size_t(j)]]);
-      for(int l = 1; l <= 3; ++l) section[std::size_t(j)][std::size_t(l)] = bld.node(final_vertex(gl, 0, e.vertex[inner(j, l)]));
+      for(int l = 1; l <= 3; ++l) section[std::size_t(j)][std::size_t(l)] = bld.node(final_vertex(gl, tube, e.vertex[inner(j, l)]));
     }
-    for(const auto& path : e.path) bld.arc(final_path(gl, 0, path));
+    for(const auto& path : e.path) bld.arc(final_path(gl, tube, path));
     bld.loop_arcs(loop1);
     if(!ring) bld.loop_arcs(loop2);
     // The seam, split at its nodes (closed for a ring: its ends are the same vertex).
@@ -1083,14 +1215,23 @@ private:
         }
       }
     }
-    add_sections(bld, section, ring);
-    return finish_layout(std::move(gl.mesh), bld, ring ? Layout_class::torus : Layout_class::cylinder, genus, boundary_loops, 0);
+    add_sections(bld, section, ring, closed_ends);
+    const Layout_class cls = closed_ends ? Layout_class::sphere : ring ? Layout_class::torus : Layout_class::cylinder;
+    return finish_layout(std::move(gl.mesh), bld, cls, genus, boundary_loops, 0);
   }
 
   static std::vector<std::size_t> as_indices(const std::vector<V>& vs)
   {
     std::vector<std::size_t> out;
     for(V v : vs) out.push_back(std::size_t(v));
+    return out;
+  }
+
+  /// A loop's vertices as indices, starting at `v`.
+  static std::vector<std::size_t> rotated_to(const std::vector<V>& loop, std::size_t v)
+  {
+    std::vector<std::size_t> out = as_indices(loop);
+    std::rotate(out.begin(), std::find(out.begin(), out.end(), v), out.end());
     return out;
   }
 
@@ -1201,12 +1342,6 @@ private:
     std::vector<std::size_t> seam(path.begin(), path.end());
     std::vector<bool> cut(num_edges(m), false);
     for(std::size_t i = 0; i + 1 < seam.size(); ++i) cut[edge(halfedge(V(std::uint32_t(seam[i])), V(std::uint32_t(seam[i + 1])), m).first, m)] = true;
-    // Loops as vertex lists, each starting at the seam's end on it.
-    auto rotated = [&](const std::vector<V>& l, std::size_t v) {
-      std::vector<std::size_t> out = as_indices(l);
-      std::rotate(out.begin(), std::find(out.begin(), out.end(), v), out.end());
-      return out;
-    };
     std::optional<std::array<std::array<std::size_t, 3>, 2>> levels;
     if(corner) {
       std::array<std::array<std::size_t, 3>, 2> lv{};
@@ -1223,7 +1358,7 @@ private:
       }
       if(three) levels = lv;
     }
-    return strip(std::move(m), cut, seam, rotated(loops[0], seam.front()), rotated(loops[1], seam.back()), false, 0, 2, levels);
+    return strip(std::move(m), cut, seam, rotated_to(loops[0], seam.front()), rotated_to(loops[1], seam.back()), false, 0, 2, levels);
   }
 
   /// A torus whose meridian crosses exactly four sharp feature curves (more than 45

@@ -41,6 +41,7 @@ namespace Polycube_IGA {
   X(belt_phase_t, belt_phase)                                                       \
   X(corners_off_steps_t, corners_off_steps)                                         \
   X(balance_pants_corners_t, balance_pants_corners)                                 \
+  X(sphere_chain_t, sphere_chain)                                                   \
   /* spline fitting (lambda_1..3 of eq. 4.1) */                                     \
   X(stretching_weight_t, stretching_weight)                                         \
   X(bending_weight_t, bending_weight)                                               \
