@@ -905,6 +905,15 @@ private:
   /// are not disks.
   static std::optional<Layout> sphere_chain(Mesh m)
   {
+    try {
+      return chain_between_caps(std::move(m));
+    } catch(const Internal_error&) { // a cut or piece the chain cannot use: one cube instead
+      return std::nullopt;
+    }
+  }
+
+  static std::optional<Layout> chain_between_caps(Mesh m)
+  {
     using namespace internal;
     Mesh_graph<Mesh> g(m, get(CGAL::vertex_point, m));
     auto farthest = [](const std::vector<double>& d) { return int(std::max_element(d.begin(), d.end()) - d.begin()); };
@@ -1002,12 +1011,8 @@ private:
     // Two cuboids split the shape at its middle as the cube's belt does: femur_S025.ply as a
     // chain of two is too far from the mesh at every grid, as one cube valid at 32 samples.
     if(std::lround(4. * W / H) < 3) return std::nullopt;
-    try {
-      return strip(std::move(m), cut, seam, rotated_to(loops[0], seam.front()), rotated_to(loops[1], seam.back()), false, 0, 0,
-                   std::nullopt, true);
-    } catch(const Internal_error&) {
-      return std::nullopt;
-    }
+    return strip(std::move(m), cut, seam, rotated_to(loops[0], seam.front()), rotated_to(loops[1], seam.back()), false, 0, 0,
+                 std::nullopt, true);
   }
 
   // ---------------------------------------------------------------- disk -------------
