@@ -736,6 +736,10 @@ auto build_with_class_variants(const TriangleMesh& tm, const NamedParameters& np
   std::vector<std::string> tried;
   internal::Layout_variant cube;
   cube.sphere_chain = false;
+  auto cube_instead_of_chain = [&] {
+    return "laid out as one cube: as a chain of " + std::to_string(chain->layout.cuboids.size()) +
+           " cuboids the volume was not valid (" + internal::comma_list(chain->invalidity_reasons()) + ")";
+  };
   auto chain_result = [&] {
     chain->warnings.push_back("one cube was tried too (belt phases " + internal::comma_list(tried) + ") and gave no valid volume");
     chain->stage_seconds = std::move(seconds);
@@ -747,9 +751,7 @@ auto build_with_class_variants(const TriangleMesh& tm, const NamedParameters& np
     model = *internal::build_on_layout(tm, np, progress, budget, cube, false, false, nullptr);
     tried.push_back("0");
     if(model.is_valid()) {
-      model.warnings.insert(model.warnings.begin(), "laid out as one cube: as a chain of " + std::to_string(chain->layout.cuboids.size()) +
-                                                      " cuboids the volume was not valid (" +
-                                                      internal::comma_list(chain->invalidity_reasons()) + ")");
+      model.warnings.insert(model.warnings.begin(), cube_instead_of_chain());
       seconds.insert(seconds.end(), model.stage_seconds.begin(), model.stage_seconds.end());
       model.stage_seconds = std::move(seconds);
       return model;
@@ -795,9 +797,7 @@ auto build_with_class_variants(const TriangleMesh& tm, const NamedParameters& np
     if(other->is_valid()) {
       const std::string why = internal::comma_list(model.invalidity_reasons());
       if(chain)
-        other->warnings.insert(other->warnings.begin(), "laid out as one cube: as a chain of " + std::to_string(chain->layout.cuboids.size()) +
-                                                          " cuboids the volume was not valid (" +
-                                                          internal::comma_list(chain->invalidity_reasons()) + ")");
+        other->warnings.insert(other->warnings.begin(), cube_instead_of_chain());
       other->warnings.insert(other->warnings.begin(), "the layout's belt nodes are moved by " + phase +
                                                          " of the zigzag's period: " +
                                                          (k > 1 ? "at phases 0 to " + std::to_string(k - 1) + "/8 no volume"

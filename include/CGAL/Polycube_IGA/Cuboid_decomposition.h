@@ -263,6 +263,26 @@ std::vector<double> distances_from(const Mesh_graph<Piece_mesh<P>>& g, const std
   return shortest_path_tree(g, roots, w).distance;
 }
 
+/// Two far vertices p and q of a connected surface (double sweep from vertex 0) and the
+/// distance fields from them, which a closed genus-0 surface's cube and chain both start from.
+struct Far_pair
+{
+  int p = 0, q = 0;
+  std::vector<double> dp, dq;
+};
+
+template <class P>
+Far_pair far_pair(const Mesh_graph<Piece_mesh<P>>& g)
+{
+  auto farthest = [](const std::vector<double>& d) { return int(std::max_element(d.begin(), d.end()) - d.begin()); };
+  Far_pair out;
+  out.p = farthest(distances_from<P>(g, {0}));
+  out.dp = distances_from<P>(g, {out.p});
+  out.q = farthest(out.dp);
+  out.dq = distances_from<P>(g, {out.q});
+  return out;
+}
+
 inline std::size_t read_parent(const std::vector<std::size_t>& map, std::size_t i) { return map[i]; }
 
 template <class P>
@@ -728,16 +748,14 @@ private:
   {
     using namespace internal;
     if(std::optional<Layout> box = feature_cube(m)) return std::move(*box);
-    if(chain)
-      if(std::optional<Layout> L = sphere_chain(m)) return std::move(*L);
     Mesh_graph<Mesh> g(m, get(CGAL::vertex_point, m));
     // Two far points by a double sweep; the bisector of their distance fields splits the
     // sphere into two connected vertex sets (every vertex reaches its source inside its set).
-    const std::vector<double> d0 = distances_from<Point>(g, {0});
-    const int p = int(std::max_element(d0.begin(), d0.end()) - d0.begin());
-    const std::vector<double> dp = distances_from<Point>(g, {p});
-    const int q = int(std::max_element(dp.begin(), dp.end()) - dp.begin());
-    const std::vector<double> dq = distances_from<Point>(g, {q});
+    const Far_pair far = far_pair<Point>(g);
+    if(chain)
+      if(std::optional<Layout> L = sphere_chain(m, g, far)) return std::move(*L);
+    const int q = far.q;
+    const std::vector<double>&dp = far.dp, &dq = far.dq;
     // The belt must zigzag: a cube seen along its diagonal (corners p and q) has its other
     // six corners alternately nearer p and nearer q. On the bisector, every face would have
     // a 180-degree corner at its middle belt node (det J = 0 there). So the cut is the level
@@ -902,25 +920,21 @@ private:
   /// sweep) is an end face, and the tube between them is laid out as strip() lays a
   /// cylinder's. sphere()'s one cube puts a long shape's length into the six faces round its
   /// belt, which are then long strips. Empty when the shape is not that long or its caps
-  /// are not disks.
-  static std::optional<Layout> sphere_chain(Mesh m)
+  /// are not disks. `g` and `far` are sphere()'s graph of `m` and its two far points.
+  static std::optional<Layout> sphere_chain(Mesh m, const internal::Mesh_graph<Mesh>& g, const internal::Far_pair& far)
   {
     try {
-      return chain_between_caps(std::move(m));
+      return chain_between_caps(std::move(m), g, far);
     } catch(const Internal_error&) { // a cut or piece the chain cannot use: one cube instead
       return std::nullopt;
     }
   }
 
-  static std::optional<Layout> chain_between_caps(Mesh m)
+  static std::optional<Layout> chain_between_caps(Mesh m, const internal::Mesh_graph<Mesh>& g, const internal::Far_pair& far)
   {
     using namespace internal;
-    Mesh_graph<Mesh> g(m, get(CGAL::vertex_point, m));
-    auto farthest = [](const std::vector<double>& d) { return int(std::max_element(d.begin(), d.end()) - d.begin()); };
-    const int p = farthest(distances_from<Point>(g, {0}));
-    const std::vector<double> dp = distances_from<Point>(g, {p});
-    const int q = farthest(dp);
-    const std::vector<double> dq = distances_from<Point>(g, {q});
+    const int p = far.p, q = far.q;
+    const std::vector<double>&dp = far.dp, &dq = far.dq;
     const double D = dp[std::size_t(q)];
     // Each cap is the far face of the chain's end cube. Such a face on a round end (its
     // corners 54.7 degrees from the pole) holds 1.61 times the square of a quarter of its
