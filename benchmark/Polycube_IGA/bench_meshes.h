@@ -20,6 +20,10 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
+#include <array>
+#include <map>
+#include <set>
+#include <vector>
 #include <ctime>
 #include <filesystem>
 #include <string>
@@ -95,6 +99,46 @@ inline bool read_subdivided(const std::string& path, int subdivisions, Mesh& m)
   if(!r.is_valid()) return false;
   for(int k = 0; k < subdivisions; ++k) PI::internal::subdivide_at_edge_midpoints(m, get(CGAL::vertex_point, m));
   return true;
+}
+
+/// The boundary of a union of unit cubes (a CAD block: an L, a T, a step), each cube face
+/// on the boundary split into `n` x `n` squares of two triangles, outward. `cells` must make
+/// a manifold solid (no two cubes sharing only an edge or a corner). The faces are regular,
+/// unlike a CAD mesher's, and every sharp edge is a mesh polyline.
+inline void union_of_cubes(const std::vector<std::array<int, 3>>& cells, int n, Mesh& m)
+{
+  std::set<std::array<int, 3>> solid(cells.begin(), cells.end());
+  std::map<std::array<int, 3>, Mesh::Vertex_index> lattice; // points at 1/n steps
+  auto vertex = [&](std::array<int, 3> x) {
+    auto it = lattice.find(x);
+    if(it != lattice.end()) return it->second;
+    const auto v = m.add_vertex(Point(double(x[0]) / n, double(x[1]) / n, double(x[2]) / n));
+    lattice.emplace(x, v);
+    return v;
+  };
+  for(const auto& c : solid)
+    for(int a = 0; a < 3; ++a)
+      for(int side = 0; side < 2; ++side) {
+        std::array<int, 3> next = c;
+        next[std::size_t(a)] += side ? 1 : -1;
+        if(solid.count(next)) continue;
+        const std::size_t b = std::size_t((a + 1) % 3), d = std::size_t((a + 2) % 3);
+        for(int i = 0; i < n; ++i)
+          for(int j = 0; j < n; ++j) {
+            std::array<Mesh::Vertex_index, 4> q;
+            const int du[4] = {0, 1, 1, 0}, dv[4] = {0, 0, 1, 1};
+            for(int k = 0; k < 4; ++k) {
+              std::array<int, 3> x{c[0] * n, c[1] * n, c[2] * n};
+              x[std::size_t(a)] += side * n;
+              x[b] += i + du[k];
+              x[d] += j + dv[k];
+              q[std::size_t(k)] = vertex(x);
+            }
+            // e_b x e_d = e_a: counter-clockwise in (b, d) faces +a.
+            if(side) m.add_face(q[0], q[1], q[2]), m.add_face(q[0], q[2], q[3]);
+            else m.add_face(q[0], q[2], q[1]), m.add_face(q[0], q[3], q[2]);
+          }
+      }
 }
 
 /// The baseline of the mesh suites on `mesh`: best of `repetitions` CHOLMOD factor + solve of

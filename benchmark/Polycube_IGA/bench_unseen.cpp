@@ -6,6 +6,9 @@
 // untangling of a result that stays invalid, since the command writes no invalid volume):
 //   - shared-data meshes no test reads (a CAD fan disk and a gear, a capped cylinder, a
 //     denser anchor, the armadillo, femurs of the population);
+//   - CAD blocks that are not boxes, made here as unions of unit cubes (an L, a T, a U, a
+//     staircase; meshes::union_of_cubes(), 6 x 6 squares per cube face): the simplest CAD
+//     parts after a box, which `build` lays out on its sharp edges;
 //   - the test meshes remeshed: PMP::isotropic_remeshing to about `target_faces` faces,
 //     with the edges whose faces meet at over 50 degrees, the border edges, and the
 //     vertices where such edges do not pass straight through kept as constraints, so the
@@ -29,6 +32,7 @@
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -43,7 +47,7 @@ using meshes::Mesh;
 
 struct Unseen_case
 {
-  const char* file;      ///< relative to the shared data directory, or "test:" + test data name
+  const char* file;      ///< relative to the shared data directory, "test:" + test data name, or "block:" + blocks[] name
   std::size_t faces;     ///< remeshed to about this many faces; 0: as it is
   bool quick;            ///< part of --quick
 };
@@ -68,6 +72,30 @@ const Unseen_case cases[] = {
   {"cgal/fandisk.off", 0, false},            {"cgal/anchor_dense.off", 0, false},
   {"cgal/armadillo.off", 0, false},          {"population/femur/S002_Femur.ply", 0, true},
   {"population/femur/S010_Femur.ply", 0, true},
+  {"block:L", 0, true},                      {"block:T", 0, true},
+  {"block:U", 0, true},                      {"block:staircase", 0, true},
+};
+
+/// The CAD blocks, as unit cubes (x, y, z): each a plate extruded from an orthogonal polygon.
+struct Block
+{
+  const char* name;
+  std::vector<std::array<int, 3>> cells;
+};
+
+std::vector<std::array<int, 3>> extruded(const std::vector<std::array<int, 2>>& squares, int height)
+{
+  std::vector<std::array<int, 3>> cells;
+  for(const auto& s : squares)
+    for(int z = 0; z < height; ++z) cells.push_back({s[0], s[1], z});
+  return cells;
+}
+
+const Block blocks[] = {
+  {"L", extruded({{0, 0}, {1, 0}, {2, 0}, {3, 0}, {0, 1}, {0, 2}}, 2)},
+  {"T", extruded({{0, 0}, {1, 0}, {2, 0}, {3, 0}, {4, 0}, {2, 1}, {2, 2}, {2, 3}}, 2)},
+  {"U", extruded({{0, 0}, {1, 0}, {2, 0}, {0, 1}, {0, 2}, {2, 1}, {2, 2}}, 1)},
+  {"staircase", {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}, {0, 0, 2}, {0, 1, 2}}},
 };
 
 /// Isotropic remeshing to about `target_faces` faces of equilateral triangles, sharp edges (dihedral
@@ -130,11 +158,14 @@ Outcome run_case(const Options& opt, const Unseen_case& c)
 {
   Outcome o;
   const std::string file = c.file;
-  const bool in_tests = file.rfind("test:", 0) == 0;
+  const bool in_tests = file.rfind("test:", 0) == 0, block = file.rfind("block:", 0) == 0;
   const std::string path = in_tests ? std::string(POLYCUBE_IGA_TEST_DATA_DIR) + "/" + file.substr(5) : opt.data_dir + "/" + file;
-  o.name = meshes::base_name(path) + (c.faces ? " ~" + std::to_string(c.faces) : std::string());
+  o.name = block ? file.substr(6) + " block" : meshes::base_name(path) + (c.faces ? " ~" + std::to_string(c.faces) : std::string());
   Mesh read, mesh;
-  if(!meshes::read_subdivided(path, 0, read)) {
+  if(block) {
+    for(const Block& b : blocks)
+      if(file.substr(6) == b.name) meshes::union_of_cubes(b.cells, 6, read);
+  } else if(!meshes::read_subdivided(path, 0, read)) {
     o.error = "cannot read " + path;
     return o;
   }

@@ -328,6 +328,7 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
                                          .belt_phase(variant.belt_phase)
                                          .corners_off_steps(variant.corners_off_steps)
                                          .sphere_chain(variant.sphere_chain)
+                                         .orthogonal_blocks(option(np, internal_np::orthogonal_blocks, true))
                                          .balance_pants_corners(option(np, internal_np::balance_pants_corners, false))
                                          .cut_pair_trials(option(np, internal_np::cut_pair_trials, default_cut_pair_trials)));
   });
@@ -852,6 +853,9 @@ auto build_with_class_variants(const TriangleMesh& tm, const NamedParameters& np
 /// more is laid out as a chain of them between caps at its two ends (Cuboid_decomposition's
 /// `sphere_chain`); if its volume is not valid, one cube is built too, at its belt phases, and
 /// kept if valid, else the chain's volume is the result; false: one cube.
+/// `orthogonal_blocks` (true): a closed CAD block whose faces are all planar and perpendicular
+/// to three axes (an L, a T, a U, a frame), other than a box, is laid out as the boxes between
+/// its faces' planes (Cuboid_decomposition's `orthogonal_blocks`); false: by its genus.
 /// `belt_phases` (4, at most 8): a closed genus-0 surface whose volume is not valid is built
 /// again on layouts whose belt nodes are moved by 1/8, 2/8, ... of the zigzag's period
 /// (Cuboid_decomposition's `belt_phase`), and the first valid one is kept; 1: never.

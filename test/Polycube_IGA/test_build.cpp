@@ -792,6 +792,21 @@ TEST_CASE("build lays a bone out as a chain of cuboids that is valid at the firs
   CHECK(cube.volume.distance.relative > 2. * chain.volume.distance.relative);
 }
 
+TEST_CASE("build turns CAD blocks into valid volumes on their boxes, exactly on the mesh: an L and a plate of genus 2", "[build][blocks]")
+{
+  // An L of unit cubes as a chain or one cube is invalid (a gmsh L 4 by 3 by 2 as a chain of
+  // 9: 2.4% of the diagonal off at a box corner inside a cap). On its 3 boxes every face is
+  // flat and the volume is the solid, valid at the first grid.
+  const std::set<std::pair<int, int>> outside_l{{1, 1}, {2, 1}, {3, 1}, {1, 2}, {2, 2}, {3, 2}};
+  for(const std::string& text : {voxel_plate_off(4, 3, outside_l, {}), voxel_plate_with(2, 0)}) {
+    const Mesh m = load(write_text("block.off", text));
+    const auto model = PI::build_trivariate_model(m);
+    CHECK(model.layout.layout_class == PI::Layout_class::blocks);
+    CHECK(model.grid_attempts == std::vector<int>{16});
+    check_valid_volume(model, 0.05, 1e-9);
+  }
+}
+
 TEST_CASE("build CLI reports a chain layout and --no-chain lays one cube", "[build][cli][chain]")
 {
   const std::string mesh = write_text("capsule.off", capsule_off(1., 8., 32));

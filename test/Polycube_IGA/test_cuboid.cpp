@@ -511,8 +511,10 @@ TEST_CASE("a CAD ring is laid out on its sharp loops: square_ring.off", "[cuboid
   // A box with a square hole: its meridian crosses four creases, each running once round the
   // ring. The ring's longitudinal arcs follow them (Cuboid_decomposition::feature_ring()),
   // so no patch folds over the box's rims; the generic ring crossed them.
+  // Its faces are all planar and axis-aligned, so by default it is split into boxes (below):
+  // the ring on creases is what a CAD ring whose faces are not gets (pinion.off, rotor.off).
   const Mesh m = load(data("square_ring.off"));
-  const Layout L = decompose(m);
+  const Layout L = PI::Cuboid_decomposition<Mesh>()(m, PI::parameters::orthogonal_blocks(false));
   CHECK(L.layout_class == PI::Layout_class::torus);
   check_layout(m, L);
   const std::size_t k = L.cuboids.size();
@@ -532,6 +534,78 @@ TEST_CASE("a CAD ring is laid out on its sharp loops: square_ring.off", "[cuboid
   }
   // Four longitudinal arcs per cuboid, all on the rims (a section may run on a crease too).
   CHECK(on_creases >= 4 * k);
+}
+
+namespace {
+
+/// Whether every sharp edge of L.mesh lies on an arc.
+bool sharp_edges_on_arcs(const Layout& L)
+{
+  const std::vector<bool> sharp = PI::internal::sharp_edges(L.mesh, 45.);
+  std::vector<bool> on_arc(num_edges(L.mesh), false);
+  for(const auto& arc : L.arcs)
+    for(std::size_t i = 0; i + 1 < arc.vertices.size(); ++i)
+      on_arc[std::size_t(edge(halfedge(arc.vertices[i], arc.vertices[i + 1], L.mesh).first, L.mesh))] = true;
+  for(std::size_t e = 0; e < sharp.size(); ++e)
+    if(sharp[e] && !on_arc[e]) return false;
+  return true;
+}
+
+} // namespace
+
+TEST_CASE("a CAD block is split into the boxes between its faces' planes: an L, plates with holes, a box ring", "[cuboid][blocks]")
+{
+  // An L of unit cubes, 4 by 3 by 1 (its cells x in {0, 1, 4}, y in {0, 1, 3}): 3 boxes,
+  // their 16 corners the nodes, 2 interfaces, every sharp edge on an arc.
+  const std::set<std::pair<int, int>> outside_l{{1, 1}, {2, 1}, {3, 1}, {1, 2}, {2, 2}, {3, 2}};
+  const Mesh l = load(write_text("l_block.off", voxel_plate_off(4, 3, outside_l, {})));
+  const Layout L = decompose(l);
+  CHECK(L.layout_class == PI::Layout_class::blocks);
+  check_layout(l, L);
+  CHECK(L.cuboids.size() == 3);
+  CHECK(L.nodes.size() == 16);
+  CHECK(L.interfaces().size() == 2);
+  CHECK(sharp_edges_on_arcs(L));
+  // Every node at a box corner: integer coordinates.
+  for(auto v : L.nodes) {
+    const Point& p = L.mesh.point(v);
+    CHECK((p.x() == std::round(p.x()) && p.y() == std::round(p.y()) && p.z() == std::round(p.z())));
+  }
+  // Asked not to, it is laid out as any closed genus-0 surface.
+  CHECK(PI::Cuboid_decomposition<Mesh>()(l, PI::parameters::orthogonal_blocks(false)).layout_class == PI::Layout_class::sphere);
+  // Plates of genus 2 and 5 (a row of holes): every cell a box, the Euler characteristics
+  // those of their genus (check_layout).
+  for(int genus : {2, 5}) {
+    INFO("genus " << genus);
+    const Mesh p = load(write_text("plate.off", voxel_plate_with(genus, 0)));
+    const Layout P = decompose(p);
+    CHECK(P.layout_class == PI::Layout_class::blocks);
+    CHECK(P.genus == genus);
+    check_layout(p, P);
+    CHECK(P.cuboids.size() == std::size_t(3 * (2 * genus + 1) - genus));
+    CHECK(sharp_edges_on_arcs(P));
+  }
+  // square_ring.off, a box with a square hole (gmsh's triangles): a ring of 8 boxes.
+  const Mesh r = load(data("square_ring.off"));
+  const Layout R = decompose(r);
+  CHECK(R.layout_class == PI::Layout_class::blocks);
+  check_layout(r, R);
+  CHECK(R.cuboids.size() == 8);
+  CHECK(R.interfaces().size() == 8);
+  CHECK(sharp_edges_on_arcs(R));
+}
+
+TEST_CASE("a CAD block whose boxes would need an edge inside the solid, and a box, are not split into blocks", "[cuboid][blocks]")
+{
+  // A 4 by 4 plate without two opposite corner cells: the planes x = 1 and y = 3 meet inside
+  // it, where no node can be. A box is laid out on its own edges (feature_cube()).
+  const Mesh notched = load(write_text("notched.off", voxel_plate_off(4, 4, {{0, 0}, {3, 3}}, {})));
+  const Layout N = decompose(notched);
+  CHECK(N.layout_class == PI::Layout_class::sphere);
+  check_layout(notched, N);
+  const Layout B = decompose(load(data("cube-meshed.off")));
+  CHECK(B.layout_class == PI::Layout_class::sphere);
+  CHECK(B.cuboids.size() == 1);
 }
 
 TEST_CASE("cuboid decomposition does not depend on the unit: pipe.off scaled", "[cuboid]")

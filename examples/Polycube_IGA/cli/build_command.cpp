@@ -228,7 +228,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
 int run_build(const Arguments& args)
 {
   Parsed_arguments a(args, {"--merge-duplicates", "--drop-isolated", "--no-self-intersection-test", "--allow-invalid", "--quiet",
-                      "--no-untangle", "--no-step-retry", "--balance-corners", "--no-chain"},
+                      "--no-untangle", "--no-step-retry", "--balance-corners", "--no-chain", "--no-blocks"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
                       "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--min-degree", "--relax-sweeps", "--stretch-rounds",
                       "--sharp-boundary-turn", "--belt-phases", "--relax-arcs", "--relocate-nodes", "--relocation-retry", "--cut-pair-trials", "--missing-part-cubes",
@@ -285,7 +285,7 @@ int run_build(const Arguments& args)
       .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
       .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid).minimum_spline_degree(min_degree)
       .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn).belt_phases(belt_phases)
-      .step_retry(!a.has("--no-step-retry")).sphere_chain(!a.has("--no-chain")).arc_relaxation_sweeps(arc_sweeps).node_relocation_sweeps(node_sweeps).node_relocation_retry(retry_sweeps).cut_pair_trials(pair_trials)
+      .step_retry(!a.has("--no-step-retry")).sphere_chain(!a.has("--no-chain")).orthogonal_blocks(!a.has("--no-blocks")).arc_relaxation_sweeps(arc_sweeps).node_relocation_sweeps(node_sweeps).node_relocation_retry(retry_sweeps).cut_pair_trials(pair_trials)
       .missing_part_cubes(missing_part_cubes).balance_pants_corners(a.has("--balance-corners")).untangling_budget(untangling_budget)
       // An invalid volume is not written without --allow-invalid: no time spent improving it.
       .untangle_invalid_result(a.has("--allow-invalid")),
@@ -358,7 +358,7 @@ Register_command build_command("build", {
   "                          [--report R.json] [--grid N] [--degree P] [--criterion length|minima|symmetry]\n"
   "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--max-grid M]\n"
   "                          [--min-grid M] [--min-degree D] [--relax-sweeps S] [--stretch-rounds R]\n"
-  "                          [--sharp-boundary-turn D] [--no-chain] [--belt-phases K] [--no-step-retry] [--relax-arcs K]\n"
+  "                          [--sharp-boundary-turn D] [--no-chain] [--no-blocks] [--belt-phases K] [--no-step-retry] [--relax-arcs K]\n"
   "                          [--relocate-nodes K] [--relocation-retry K] [--cut-pair-trials K]\n"
   "                          [--missing-part-cubes K] [--small-handle-length F] [--no-untangle]\n"
   "                          [--untangling-budget G] [--balance-corners] [--allow-invalid]\n"
@@ -391,6 +391,10 @@ Register_command build_command("build", {
   "  --no-chain        a closed genus-0 surface long enough for three cube-like cuboids or more is\n"
   "                    by default laid out as a chain of them between caps at its two ends, and\n"
   "                    as one cube if that volume is not valid; this lays it out as one cube\n"
+  "  --no-blocks       a closed CAD block whose faces are all planar and perpendicular to three\n"
+  "                    axes (an L, a T, a U, a frame) is by default split into the boxes between\n"
+  "                    its faces' planes, its sharp edges on their edges; this lays it out by its\n"
+  "                    genus as any other surface\n"
   "  --belt-phases K   a closed genus-0 surface (one cube) whose volume is not valid is built\n"
   "                    again with the cube's six belt nodes moved along the belt by 1/8, ...,\n"
   "                    (K-1)/8 of the zigzag's period; the first valid one is written\n"

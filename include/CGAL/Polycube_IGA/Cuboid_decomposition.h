@@ -43,6 +43,7 @@
 #include <CGAL/Polycube_IGA/internal/mesh_graph.h>
 #include <CGAL/Polycube_IGA/internal/mesh_refinement.h>
 #include <CGAL/Polycube_IGA/internal/mesh_pieces.h>
+#include <CGAL/Polycube_IGA/internal/orthogonal_grid.h>
 #include <CGAL/Polycube_IGA/internal/piece_layout.h>
 #include <CGAL/Polycube_IGA/internal/shortest_path_tree.h>
 
@@ -59,6 +60,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <utility>
 #include <string>
 #include <vector>
@@ -420,7 +422,10 @@ inline Piece_graph disk_graph(const std::array<std::size_t, 4>& corner, double a
 /// along the belt, as a fraction of the zigzag's period, a third of the belt),
 /// `sphere_chain` (default false: a closed genus-0 surface is one cube; true: one long
 /// enough for three cube-like cuboids or more, and not a box, is a chain of them between caps
-/// round its two farthest points, sphere_chain()), `corners_off_steps` (default false: on a cylinder, section corners that the seam puts within
+/// round its two farthest points, sphere_chain()), `orthogonal_blocks` (default true: a closed
+/// CAD block whose faces are all planar and perpendicular to three axes, other than a box, is
+/// split into the boxes between its faces' planes, orthogonal_blocks(); false: laid out by
+/// its genus as any other surface), `corners_off_steps` (default false: on a cylinder, section corners that the seam puts within
 /// 1/16 of a loop of a step of the loop, where it turns by over 45 degrees within the surface,
 /// move off it; internal::clear_of_steps()), `balance_pants_corners` (default false: each
 /// pants half's four centre nodes stay where Tutte's rule puts them in its convex map; true
@@ -446,6 +451,7 @@ public:
     const bool off_steps = option(np, internal_np::corners_off_steps, false);
     const bool balance = option(np, internal_np::balance_pants_corners, false);
     const bool chain = option(np, internal_np::sphere_chain, false);
+    const bool blocks = option(np, internal_np::orthogonal_blocks, true);
     if(!(belt_phase >= 0. && belt_phase < 1.)) throw Invalid_input_error("invalid_parameter", "belt_phase must be in [0, 1)");
     Surface_topology_result<TriangleMesh> topo = internal::given_or_computed_topology(tm, get_parameter(np, internal_np::surface_topology));
     // Where a boundary is too coarse for its corners or a half has no room for its arcs, the
@@ -453,6 +459,11 @@ public:
     // vertices keep their indices) and the construction starts again. On the pants path the
     // decomposition is kept and carried to the finer mesh: recomputed there, its cycles would
     // hug each other again (two shortest loops around one thin handle stay one edge apart).
+    if(blocks && topo.number_of_boundary_loops() == 0)
+      if(std::optional<Layout> L = orthogonal_blocks(copy_of(tm), topo.genus)) {
+        carry_input_indices(tm, *L);
+        return std::move(*L);
+      }
     std::optional<Pants_decomposition_result<TriangleMesh>> pd;
     if(topo.euler_characteristic < 0)
       pd = Pants_decomposition<TriangleMesh>()(
@@ -733,6 +744,107 @@ private:
       Mesh copy = m;
       Layout L = finish_layout(std::move(copy), bld, Layout_class::sphere, 0, 0, 0);
       if(L.patches.size() != 6 || !L.validate().is_valid()) return std::nullopt;
+      return L;
+    } catch(const Internal_error&) {
+      return std::nullopt;
+    }
+  }
+
+  // ---------------------------------------------------------------- blocks -----------
+  /// A closed CAD block of genus `genus` whose faces are all planar and perpendicular to three
+  /// axes (internal/orthogonal_grid.h: an L, a T, a U, a bracket, a frame), split into the
+  /// boxes between the planes of its faces: the grid planes are inserted into the mesh (the
+  /// surface does not move), the boxes' corners are the nodes, the grid lines on the surface
+  /// the arcs (every sharp edge among them), the boxes the cuboids and the faces they share
+  /// the interfaces. Any other layout would cross the sharp edges, which no smooth face
+  /// follows (an L-block as a chain of cuboids: 2.4% of the diagonal off at a corner inside
+  /// a cap). Empty for a box (feature_cube()), when a grid edge would run inside the solid,
+  /// or when the boxes do not make a valid layout.
+  static std::optional<Layout> orthogonal_blocks(Mesh m, int genus)
+  {
+    using namespace internal;
+    const std::optional<Orthogonal_grid> grid = orthogonal_grid(m);
+    if(!grid || std::count(grid->inside.begin(), grid->inside.end(), true) < 2) return std::nullopt;
+    const Orthogonal_grid& G = *grid;
+    try {
+      insert_grid_planes(m, G);
+      // Each vertex's plane indices (-1: on none); grid points are the vertices on three.
+      std::vector<std::array<int, 3>> at(num_vertices(m));
+      std::map<std::array<int, 3>, std::size_t> vertex_at;
+      auto coordinate = [&](V v, std::size_t k) { return G.coordinate(m.point(v), k); };
+      for(V v : vertices(m)) {
+        for(std::size_t k = 0; k < 3; ++k) at[std::size_t(v)][k] = G.plane_at(k, coordinate(v, k));
+        const std::array<int, 3>& a = at[std::size_t(v)];
+        if(a[0] >= 0 && a[1] >= 0 && a[2] >= 0 && !vertex_at.emplace(a, std::size_t(v)).second)
+          layout_failure("two vertices at one grid point");
+      }
+      Layout_builder bld;
+      auto node_at = [&](const std::array<int, 3>& a) {
+        auto it = vertex_at.find(a);
+        if(it == vertex_at.end()) layout_failure("a box corner is not a mesh vertex");
+        return bld.node(it->second);
+      };
+      // The grid line from grid point a one step along axis k: the mesh path through the
+      // vertices on that line.
+      auto line_path = [&](const std::array<int, 3>& a, std::size_t k) {
+        std::array<int, 3> b = a;
+        ++b[k];
+        node_at(a), node_at(b);
+        const double end = G.planes[k][std::size_t(b[k])];
+        std::vector<std::size_t> path{vertex_at.at(a)};
+        while(path.back() != vertex_at.at(b)) {
+          const V x(std::uint32_t(path.back()));
+          const double from = coordinate(x, k);
+          std::optional<std::size_t> next;
+          double best = std::numeric_limits<double>::infinity();
+          for(V y : vertices_around_target(halfedge(x, m), m)) {
+            const std::array<int, 3>& c = at[std::size_t(y)];
+            bool on_line = true;
+            for(std::size_t i = 0; i < 3; ++i)
+              if(i != k && c[i] != a[i]) on_line = false;
+            const double t = coordinate(y, k);
+            if(on_line && t > from && t <= end + G.tolerance && t < best) best = t, next = std::size_t(y);
+          }
+          if(!next || path.size() > num_vertices(m)) layout_failure("a grid line is not a path of mesh edges");
+          path.push_back(*next);
+        }
+        return path;
+      };
+      const std::array<int, 3> n = G.cells();
+      std::set<std::pair<std::array<int, 3>, std::size_t>> lines; // (start, axis) of the arcs
+      for(int l = 0; l < n[2]; ++l)
+        for(int j = 0; j < n[1]; ++j)
+          for(int i = 0; i < n[0]; ++i) {
+            if(!G.is_inside({i, j, l})) continue;
+            std::array<std::size_t, 8> cube{};
+            for(int c = 0; c < 8; ++c) cube[std::size_t(c)] = node_at({i + (c & 1), j + ((c >> 1) & 1), l + (c >> 2)});
+            bld.cuboids.push_back(cube);
+            bld.cuboid_pants.push_back(-1);
+            for(std::size_t k = 0; k < 3; ++k) {
+              const std::size_t b = (k + 1) % 3, d = (k + 2) % 3;
+              for(int s = 0; s < 4; ++s) {
+                std::array<int, 3> start{i, j, l};
+                start[b] += s & 1, start[d] += s >> 1;
+                lines.insert({start, k});
+              }
+              // The face shared with the next box along k, corners in cyclic order.
+              std::array<int, 3> next{i, j, l};
+              ++next[k];
+              if(!G.is_inside(next)) continue;
+              Interior_quad q;
+              q.kind = int(Layout::INTERFACE);
+              for(int s = 0; s < 4; ++s) {
+                std::array<int, 3> corner = next;
+                corner[b] += s == 1 || s == 2 ? 1 : 0; // (0,0), (1,0), (1,1), (0,1)
+                corner[d] += s >= 2 ? 1 : 0;
+                q.corners[std::size_t(s)] = node_at(corner);
+              }
+              bld.interior.push_back(q);
+            }
+          }
+      for(const auto& line : lines) bld.arc(line_path(line.first, line.second));
+      Layout L = finish_layout(std::move(m), bld, Layout_class::blocks, genus, 0, 0);
+      if(!L.validate().is_valid()) return std::nullopt;
       return L;
     } catch(const Internal_error&) {
       return std::nullopt;

@@ -33,7 +33,8 @@ enum class Layout_class
   disk,     ///< one cube capped by the boundary loop
   cylinder, ///< a chain of cuboids between two boundary loops
   torus,    ///< a ring of cuboids cut along meridians
-  pants     ///< 4 cuboids per pants patch (§2.2.2)
+  pants,    ///< 4 cuboids per pants patch (§2.2.2)
+  blocks    ///< a CAD block's boxes between the planes of its faces (any genus, no boundary)
 };
 
 inline const char* layout_class_name(Layout_class c)
@@ -43,6 +44,7 @@ inline const char* layout_class_name(Layout_class c)
   case Layout_class::disk: return "disk";
   case Layout_class::cylinder: return "cylinder";
   case Layout_class::torus: return "torus";
+  case Layout_class::blocks: return "blocks";
   default: return "pants";
   }
 }

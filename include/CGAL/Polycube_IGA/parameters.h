@@ -42,6 +42,7 @@ namespace Polycube_IGA {
   X(corners_off_steps_t, corners_off_steps)                                         \
   X(balance_pants_corners_t, balance_pants_corners)                                 \
   X(sphere_chain_t, sphere_chain)                                                   \
+  X(orthogonal_blocks_t, orthogonal_blocks)                                         \
   /* spline fitting (lambda_1..3 of eq. 4.1) */                                     \
   X(stretching_weight_t, stretching_weight)                                         \
   X(bending_weight_t, bending_weight)                                               \
