@@ -825,6 +825,27 @@ TEST_CASE("build CLI reports a chain layout and --no-chain lays one cube", "[bui
   CHECK(text.find("\"cuboids\":1,") != std::string::npos);
 }
 
+TEST_CASE("build CLI reports a CAD block's boxes and --no-blocks lays it out by its genus", "[build][cli][blocks]")
+{
+  const std::set<std::pair<int, int>> outside_l{{1, 1}, {2, 1}, {3, 1}, {1, 2}, {2, 2}, {3, 2}};
+  const std::string mesh = write_text("l_block.off", voxel_plate_off(4, 3, outside_l, {}));
+  const std::string xml = temp_path("l_block.xml"), report = temp_path("l_block.json");
+  Cli_result r = run_cli("build '" + mesh + "' -o '" + xml + "' --report '" + report + "' --quiet");
+  CHECK(r.exit_code == 0);
+  CHECK(exists(xml));
+  std::string text = slurp(report);
+  CHECK(text.find("\"layout_class\":\"blocks\"") != std::string::npos);
+  CHECK(text.find("\"cuboids\":3,") != std::string::npos);
+  // One cube on one grid, nothing retried: far from the L's corners.
+  r = run_cli("build '" + mesh + "' -o '" + xml + "' --report '" + report +
+              "' --no-blocks --no-chain --max-grid 16 --min-grid 16 --min-degree 3 --belt-phases 1 --relocation-retry 0 "
+              "--no-untangle --stretch-rounds 0 --missing-part-cubes 0 --allow-invalid --quiet");
+  CHECK(r.exit_code == 0);
+  text = slurp(report);
+  CHECK(text.find("\"layout_class\":\"sphere\"") != std::string::npos);
+  CHECK(text.find("\"valid\":false") != std::string::npos);
+}
+
 TEST_CASE("build does not untangle a finer grid that cannot become valid, and says why", "[build]")
 {
   // head.off at 8 samples, retried at 16, with its eye holes' tips left sharp (rounded, the
