@@ -74,7 +74,7 @@ struct Orthogonal_grid
 /// `angle_degrees` of an axis, every face on one of its axis's planes) whose box edges all
 /// lie on the surface, with at most `maximum_cells` boxes; empty otherwise.
 template <class Mesh>
-std::optional<Orthogonal_grid> orthogonal_grid(const Mesh& m, double angle_degrees = 2., std::size_t maximum_cells = 64)
+std::optional<Orthogonal_grid> orthogonal_grid(const Mesh& m, double angle_degrees = 2., std::size_t maximum_cells = 256)
 {
   using K = typename CGAL::Kernel_traits<typename Mesh::Point>::Kernel;
   if(num_faces(m) == 0) return std::nullopt;
