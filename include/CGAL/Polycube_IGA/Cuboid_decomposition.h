@@ -454,16 +454,18 @@ public:
     const bool blocks = option(np, internal_np::orthogonal_blocks, true);
     if(!(belt_phase >= 0. && belt_phase < 1.)) throw Invalid_input_error("invalid_parameter", "belt_phase must be in [0, 1)");
     Surface_topology_result<TriangleMesh> topo = internal::given_or_computed_topology(tm, get_parameter(np, internal_np::surface_topology));
-    // Where a boundary is too coarse for its corners or a half has no room for its arcs, the
-    // whole surface is subdivided at edge midpoints (the shape does not change, the input's
-    // vertices keep their indices) and the construction starts again. On the pants path the
-    // decomposition is kept and carried to the finer mesh: recomputed there, its cycles would
-    // hug each other again (two shortest loops around one thin handle stay one edge apart).
+    // A CAD block of any genus is its boxes, before any pants stage: every other layout
+    // crosses its sharp edges.
     if(blocks && topo.number_of_boundary_loops() == 0)
       if(std::optional<Layout> L = orthogonal_blocks(copy_of(tm), topo.genus)) {
         carry_input_indices(tm, *L);
         return std::move(*L);
       }
+    // Where a boundary is too coarse for its corners or a half has no room for its arcs, the
+    // whole surface is subdivided at edge midpoints (the shape does not change, the input's
+    // vertices keep their indices) and the construction starts again. On the pants path the
+    // decomposition is kept and carried to the finer mesh: recomputed there, its cycles would
+    // hug each other again (two shortest loops around one thin handle stay one edge apart).
     std::optional<Pants_decomposition_result<TriangleMesh>> pd;
     if(topo.euler_characteristic < 0)
       pd = Pants_decomposition<TriangleMesh>()(
