@@ -797,8 +797,7 @@ TEST_CASE("build turns CAD blocks into valid volumes on their boxes, exactly on 
   // An L of unit cubes as a chain or one cube is invalid (a gmsh L 4 by 3 by 2 as a chain of
   // 9: 2.4% of the diagonal off at a box corner inside a cap). On its 3 boxes every face is
   // flat and the volume is the solid, valid at the first grid.
-  const std::set<std::pair<int, int>> outside_l{{1, 1}, {2, 1}, {3, 1}, {1, 2}, {2, 2}, {3, 2}};
-  for(const std::string& text : {voxel_plate_off(4, 3, outside_l, {}), voxel_plate_with(2, 0)}) {
+  for(const std::string& text : {voxel_l_off(), voxel_plate_with(2, 0)}) {
     const Mesh m = load(write_text("block.off", text));
     const auto model = PI::build_trivariate_model(m);
     CHECK(model.layout.layout_class == PI::Layout_class::blocks);
@@ -827,8 +826,7 @@ TEST_CASE("build CLI reports a chain layout and --no-chain lays one cube", "[bui
 
 TEST_CASE("build CLI reports a CAD block's boxes and --no-blocks lays it out by its genus", "[build][cli][blocks]")
 {
-  const std::set<std::pair<int, int>> outside_l{{1, 1}, {2, 1}, {3, 1}, {1, 2}, {2, 2}, {3, 2}};
-  const std::string mesh = write_text("l_block.off", voxel_plate_off(4, 3, outside_l, {}));
+  const std::string mesh = write_text("l_block.off", voxel_l_off());
   const std::string xml = temp_path("l_block.xml"), report = temp_path("l_block.json");
   Cli_result r = run_cli("build '" + mesh + "' -o '" + xml + "' --report '" + report + "' --quiet");
   CHECK(r.exit_code == 0);

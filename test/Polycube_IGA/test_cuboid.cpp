@@ -557,8 +557,7 @@ TEST_CASE("a CAD block is split into the boxes between its faces' planes: an L, 
 {
   // An L of unit cubes, 4 by 3 by 1 (its cells x in {0, 1, 4}, y in {0, 1, 3}): 3 boxes,
   // their 16 corners the nodes, 2 interfaces, every sharp edge on an arc.
-  const std::set<std::pair<int, int>> outside_l{{1, 1}, {2, 1}, {3, 1}, {1, 2}, {2, 2}, {3, 2}};
-  const Mesh l = load(write_text("l_block.off", voxel_plate_off(4, 3, outside_l, {})));
+  const Mesh l = load(write_text("l_block.off", voxel_l_off()));
   const Layout L = decompose(l);
   CHECK(L.layout_class == PI::Layout_class::blocks);
   check_layout(l, L);

@@ -128,6 +128,12 @@ inline std::string voxel_plate_off(int nx, int ny, const std::set<std::pair<int,
   return off_text(points, quads);
 }
 
+/// An L of unit cubes, 4 by 3 by 1 (a CAD block: the plate without the cells x >= 1, y >= 1).
+inline std::string voxel_l_off()
+{
+  return voxel_plate_off(4, 3, {{1, 1}, {2, 1}, {3, 1}, {1, 2}, {2, 2}, {3, 2}}, {});
+}
+
 /// A plate with `genus` holes in a row and `boundaries` open top cells in a second row.
 inline std::string voxel_plate_with(int genus, int boundaries)
 {

@@ -837,9 +837,8 @@ private:
               q.kind = int(Layout::INTERFACE);
               for(int s = 0; s < 4; ++s) {
                 std::array<int, 3> corner = next;
-                corner[b] += s == 1 || s == 2 ? 1 : 0; // (0,0), (1,0), (1,1), (0,1)
-                corner[d] += s >= 2 ? 1 : 0;
-                q.corners[std::size_t(s)] = node_at(corner);
+                corner[b] += s & 1, corner[d] += s >> 1;
+                q.corners[std::size_t(cyclic_corner(s & 1, s >> 1))] = node_at(corner);
               }
               bld.interior.push_back(q);
             }

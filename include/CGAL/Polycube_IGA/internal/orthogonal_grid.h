@@ -85,7 +85,7 @@ std::optional<Orthogonal_grid> orthogonal_grid(const Mesh& m, double angle_degre
     area[std::size_t(f)] = CGAL::to_double(CGAL::Polygon_mesh_processing::face_area(f, m));
   }
   // Axes: the largest face's normal, then the largest face's perpendicular to it.
-  const double along = std::cos(angle_degrees * 3.14159265358979323846 / 180.), across = std::sin(angle_degrees * 3.14159265358979323846 / 180.);
+  const double radians = angle_degrees * 3.14159265358979323846 / 180., along = std::cos(radians), across = std::sin(radians);
   std::size_t first = 0;
   for(std::size_t f = 1; f < normal.size(); ++f)
     if(area[f] > area[first]) first = f;
