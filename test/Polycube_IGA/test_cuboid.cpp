@@ -607,6 +607,65 @@ TEST_CASE("a CAD block whose boxes would need an edge inside the solid, and a bo
   CHECK(B.cuboids.size() == 1);
 }
 
+TEST_CASE("a polycube map lays CAD parts with round holes and fillets out on its boxes", "[cuboid][polycube]")
+{
+  // A plate with two round holes (genus 2): its polycube is a plate with two square holes,
+  // 13 boxes; each hole's wall carries 4 arcs, so 8 nodes on each hole's two rims.
+  const Mesh p = load(data("plate_two_round_holes.off"));
+  const auto polycube = PI::parameters::polycube_map(true);
+  const Layout P = PI::Cuboid_decomposition<Mesh>()(p, polycube);
+  CHECK(P.layout_class == PI::Layout_class::polycube);
+  CHECK(P.genus == 2);
+  check_layout(p, P); // on the input surface: same area, input vertices unchanged
+  CHECK(P.cuboids.size() == 13);
+  CHECK(P.interfaces().size() == 14);
+  for(double cx : {1.5, 4.5}) {
+    int on_rim = 0;
+    for(auto v : P.nodes) {
+      const Point& q = P.mesh.point(v);
+      const double r = std::hypot(q.x() - cx, q.y() - 1.5);
+      on_rim += std::abs(r - 0.6) < 0.02 && (std::abs(q.z()) < 1e-9 || std::abs(q.z() - 0.6) < 1e-9) ? 1 : 0;
+    }
+    CHECK(on_rim == 8);
+  }
+  // The same input gives the same layout.
+  const Layout again = PI::Cuboid_decomposition<Mesh>()(p, polycube);
+  CHECK(again.nodes == P.nodes);
+  CHECK(num_vertices(again.mesh) == num_vertices(P.mesh));
+  // A T whose edges are all filleted: the T's 4 boxes, on the filleted surface.
+  const Mesh t = load(data("t_block_filleted.off"));
+  const Layout T = PI::Cuboid_decomposition<Mesh>()(t, polycube);
+  CHECK(T.layout_class == PI::Layout_class::polycube);
+  check_layout(t, T);
+  CHECK(T.cuboids.size() == 4);
+  CHECK(T.interfaces().size() == 3);
+  // A sphere's polycube is one cube.
+  const Mesh s = load(data("sphere.off"));
+  const Layout S = PI::Cuboid_decomposition<Mesh>()(s, polycube);
+  CHECK(S.layout_class == PI::Layout_class::polycube);
+  check_layout(s, S);
+  CHECK(S.cuboids.size() == 1);
+}
+
+TEST_CASE("a polycube map is refused with a reason: a surface with a boundary, one whose labels make no polycube", "[cuboid][polycube]")
+{
+  const auto polycube = PI::parameters::polycube_map(true);
+  const Mesh open = load(write_text("plate_open.off", voxel_plate_with(1, 1)));
+  try {
+    PI::Cuboid_decomposition<Mesh>()(open, polycube);
+    FAIL("a surface with a boundary loop was laid out on a polycube map");
+  } catch(const PI::Invalid_input_error& e) {
+    CHECK(e.reason() == "wrong_topology");
+  }
+  // eight.off, a smooth genus-2 shape: deformed to its labels, faces turn over.
+  try {
+    PI::Cuboid_decomposition<Mesh>()(load(data("eight.off")), polycube);
+    FAIL("eight.off was laid out on a polycube map");
+  } catch(const PI::Internal_error& e) {
+    CHECK(e.reason() == "no_polycube_map");
+  }
+}
+
 TEST_CASE("cuboid decomposition does not depend on the unit: pipe.off scaled", "[cuboid]")
 {
   // pipe.off's structured mesh puts the corners of a section on one ring. Scaled by 2, 3,

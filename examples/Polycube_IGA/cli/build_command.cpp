@@ -118,6 +118,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("arcs_relaxed", model.arc_relaxation.arcs_moved)
       .member("nodes_relocated", model.node_relocation.nodes_moved)
       .member("relocation_retried", model.relocation_retried)
+      .member("polycube_retried", model.polycube_retried)
       .member("relaxation_sweeps", V.relaxation.sweeps)
       .member("relaxation_last_move", V.relaxation.last_move)
       .member("valid", reasons.empty())
@@ -228,7 +229,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
 int run_build(const Arguments& args)
 {
   Parsed_arguments a(args, {"--merge-duplicates", "--drop-isolated", "--no-self-intersection-test", "--allow-invalid", "--quiet",
-                      "--no-untangle", "--no-step-retry", "--balance-corners", "--no-chain", "--no-blocks"},
+                      "--no-untangle", "--no-step-retry", "--balance-corners", "--no-chain", "--no-blocks", "--polycube", "--no-polycube-retry"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
                       "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--min-degree", "--relax-sweeps", "--stretch-rounds",
                       "--sharp-boundary-turn", "--belt-phases", "--relax-arcs", "--relocate-nodes", "--relocation-retry", "--cut-pair-trials", "--missing-part-cubes",
@@ -285,7 +286,7 @@ int run_build(const Arguments& args)
       .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
       .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid).minimum_spline_degree(min_degree)
       .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn).belt_phases(belt_phases)
-      .step_retry(!a.has("--no-step-retry")).sphere_chain(!a.has("--no-chain")).orthogonal_blocks(!a.has("--no-blocks")).arc_relaxation_sweeps(arc_sweeps).node_relocation_sweeps(node_sweeps).node_relocation_retry(retry_sweeps).cut_pair_trials(pair_trials)
+      .step_retry(!a.has("--no-step-retry")).sphere_chain(!a.has("--no-chain")).orthogonal_blocks(!a.has("--no-blocks")).polycube_map(a.has("--polycube")).polycube_retry(!a.has("--no-polycube-retry")).arc_relaxation_sweeps(arc_sweeps).node_relocation_sweeps(node_sweeps).node_relocation_retry(retry_sweeps).cut_pair_trials(pair_trials)
       .missing_part_cubes(missing_part_cubes).balance_pants_corners(a.has("--balance-corners")).untangling_budget(untangling_budget)
       // An invalid volume is not written without --allow-invalid: no time spent improving it.
       .untangle_invalid_result(a.has("--allow-invalid")),
@@ -358,7 +359,7 @@ Register_command build_command("build", {
   "                          [--report R.json] [--grid N] [--degree P] [--criterion length|minima|symmetry]\n"
   "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--max-grid M]\n"
   "                          [--min-grid M] [--min-degree D] [--relax-sweeps S] [--stretch-rounds R]\n"
-  "                          [--sharp-boundary-turn D] [--no-chain] [--no-blocks] [--belt-phases K] [--no-step-retry] [--relax-arcs K]\n"
+  "                          [--sharp-boundary-turn D] [--no-chain] [--no-blocks] [--polycube] [--no-polycube-retry] [--belt-phases K] [--no-step-retry] [--relax-arcs K]\n"
   "                          [--relocate-nodes K] [--relocation-retry K] [--cut-pair-trials K]\n"
   "                          [--missing-part-cubes K] [--small-handle-length F] [--no-untangle]\n"
   "                          [--untangling-budget G] [--balance-corners] [--allow-invalid]\n"
@@ -395,6 +396,12 @@ Register_command build_command("build", {
   "                    axes (an L, a T, a U, a frame) is by default split into the boxes between\n"
   "                    its faces' planes, its sharp edges on their edges; this lays it out by its\n"
   "                    genus as any other surface\n"
+  "  --polycube        lay a closed surface out on the boxes of a polycube map of it (faces\n"
+  "                    labelled by their nearest axis direction, the surface deformed until each\n"
+  "                    label's charts are planar, the polycube split into boxes along its faces'\n"
+  "                    planes, the boxes carried back to the surface)\n"
+  "  --no-polycube-retry  a closed surface whose layout by its genus gives no valid volume is\n"
+  "                    by default built again on a polycube map's boxes, kept if valid; never\n"
   "  --belt-phases K   a closed genus-0 surface (one cube) whose volume is not valid is built\n"
   "                    again with the cube's six belt nodes moved along the belt by 1/8, ...,\n"
   "                    (K-1)/8 of the zigzag's period; the first valid one is written\n"

@@ -44,6 +44,7 @@
 #include <CGAL/Polycube_IGA/internal/mesh_refinement.h>
 #include <CGAL/Polycube_IGA/internal/mesh_pieces.h>
 #include <CGAL/Polycube_IGA/internal/orthogonal_grid.h>
+#include <CGAL/Polycube_IGA/internal/polycube_map.h>
 #include <CGAL/Polycube_IGA/internal/piece_layout.h>
 #include <CGAL/Polycube_IGA/internal/shortest_path_tree.h>
 
@@ -425,7 +426,10 @@ inline Piece_graph disk_graph(const std::array<std::size_t, 4>& corner, double a
 /// round its two farthest points, sphere_chain()), `orthogonal_blocks` (default true: a closed
 /// CAD block whose faces are all planar and perpendicular to three axes, other than a box, is
 /// split into the boxes between its faces' planes, orthogonal_blocks(); false: laid out by
-/// its genus as any other surface), `corners_off_steps` (default false: on a cylinder, section corners that the seam puts within
+/// its genus as any other surface), `polycube_map` (default false: true lays a closed surface
+/// out on the boxes of a polycube map of it, polycube_blocks(), and throws
+/// Internal_error("no_polycube_map") with the reason when it makes none, Invalid_input_error
+/// ("wrong_topology") for a surface with a boundary), `corners_off_steps` (default false: on a cylinder, section corners that the seam puts within
 /// 1/16 of a loop of a step of the loop, where it turns by over 45 degrees within the surface,
 /// move off it; internal::clear_of_steps()), `balance_pants_corners` (default false: each
 /// pants half's four centre nodes stay where Tutte's rule puts them in its convex map; true
@@ -452,8 +456,20 @@ public:
     const bool balance = option(np, internal_np::balance_pants_corners, false);
     const bool chain = option(np, internal_np::sphere_chain, false);
     const bool blocks = option(np, internal_np::orthogonal_blocks, true);
+    const bool polycube = option(np, internal_np::polycube_map, false);
     if(!(belt_phase >= 0. && belt_phase < 1.)) throw Invalid_input_error("invalid_parameter", "belt_phase must be in [0, 1)");
     Surface_topology_result<TriangleMesh> topo = internal::given_or_computed_topology(tm, get_parameter(np, internal_np::surface_topology));
+    if(polycube) {
+      if(topo.number_of_boundary_loops() > 0)
+        throw Invalid_input_error("wrong_topology", "a polycube map needs a closed surface; this one has " +
+                                                      std::to_string(topo.number_of_boundary_loops()) + " boundary loop(s)");
+      std::string why;
+      if(std::optional<Layout> L = polycube_blocks(copy_of(tm), topo.genus, &why)) {
+        carry_input_indices(tm, *L);
+        return std::move(*L);
+      }
+      throw Internal_error("no_polycube_map", why);
+    }
     // A CAD block of any genus is its boxes, before any pants stage: every other layout
     // crosses its sharp edges.
     if(blocks && topo.number_of_boundary_loops() == 0)
@@ -762,11 +778,16 @@ private:
   /// follows (an L-block as a chain of cuboids: 2.4% of the diagonal off at a corner inside
   /// a cap). Empty for a box (feature_cube()), when a grid edge would run inside the solid,
   /// or when the boxes do not make a valid layout.
-  static std::optional<Layout> orthogonal_blocks(Mesh m, int genus)
+  ///
+  /// With `layout_class` polycube, `m` is a polycube map of a surface whose points are the
+  /// map "v:original_point" of `m` (polycube_blocks()): the grid is that of the polycube, the
+  /// layout's mesh the surface, and one box is a layout too.
+  static std::optional<Layout> orthogonal_blocks(Mesh m, int genus, Layout_class layout_class = Layout_class::blocks)
   {
     using namespace internal;
     const std::optional<Orthogonal_grid> grid = orthogonal_grid(m);
-    if(!grid || std::count(grid->inside.begin(), grid->inside.end(), true) < 2) return std::nullopt;
+    const long boxes = grid ? long(std::count(grid->inside.begin(), grid->inside.end(), true)) : 0;
+    if(boxes < (layout_class == Layout_class::polycube ? 1 : 2)) return std::nullopt;
     const Orthogonal_grid& G = *grid;
     try {
       insert_grid_planes(m, G);
@@ -844,12 +865,53 @@ private:
             }
           }
       for(const auto& line : lines) bld.arc(line_path(line.first, line.second));
-      Layout L = finish_layout(std::move(m), bld, Layout_class::blocks, genus, 0, 0);
+      auto original = m.template property_map<V, Point>("v:original_point");
+      if(original.second) {
+        for(V v : vertices(m)) m.point(v) = original.first[v];
+        m.remove_property_map(original.first);
+      }
+      Layout L = finish_layout(std::move(m), bld, layout_class, genus, 0, 0);
       if(!L.validate().is_valid()) return std::nullopt;
       return L;
     } catch(const Internal_error&) {
       return std::nullopt;
     }
+  }
+
+  /// A closed surface of genus `genus` laid out on the boxes of a polycube map of it
+  /// (internal/polycube_map.h): faces labelled with their nearest axis direction, the surface
+  /// deformed until each chart of one label is planar, that polycube split into the boxes
+  /// between its faces' planes (orthogonal_blocks()), and the boxes' corners, edges and faces
+  /// carried back to the surface, where they follow its own directions. Empty, with the
+  /// reason in `why`, when the deformed surface is not a polycube (a face turned over or
+  /// flat, the surface through itself) or its boxes make no layout.
+  static std::optional<Layout> polycube_blocks(Mesh m, int genus, std::string* why = nullptr)
+  {
+    using namespace internal;
+    auto fail = [&](const std::string& reason) -> std::optional<Layout> {
+      if(why) *why = reason;
+      return std::nullopt;
+    };
+    std::vector<Eigen::Vector3d> normal(num_faces(m));
+    std::vector<double> area(num_faces(m));
+    for(F f : faces(m)) {
+      normal[std::size_t(f)] = unit_face_normal(m, f);
+      area[std::size_t(f)] = CGAL::to_double(CGAL::Polygon_mesh_processing::face_area(f, m));
+    }
+    const Eigen::Matrix3d frame = polycube_frame(m, normal, area);
+    std::vector<int> label = polycube_labels(m, frame, normal, area);
+    split_edges_between_borders(m, label);
+    const std::optional<std::vector<Eigen::Vector3d>> position = polycube_positions(m, frame, label);
+    if(!position) return fail("the surface deformed to its labels is not a polycube (a face turned over or flat, or the surface through itself)");
+    auto original = m.template add_property_map<V, Point>("v:original_point").first;
+    for(V v : vertices(m)) {
+      original[v] = m.point(v);
+      const Eigen::Vector3d& p = (*position)[std::size_t(v)];
+      m.point(v) = Point(p.x(), p.y(), p.z());
+    }
+    std::optional<Layout> L = orthogonal_blocks(std::move(m), genus, Layout_class::polycube);
+    if(!L) return fail("the polycube's boxes make no layout (a box edge inside the solid, over 256 boxes, or an invalid layout)");
+    return L;
   }
 
   /// `phase`: the belt's zigzag and its six nodes are moved along the belt by this fraction

@@ -34,7 +34,8 @@ enum class Layout_class
   cylinder, ///< a chain of cuboids between two boundary loops
   torus,    ///< a ring of cuboids cut along meridians
   pants,    ///< 4 cuboids per pants patch (§2.2.2)
-  blocks    ///< a CAD block's boxes between the planes of its faces (any genus, no boundary)
+  blocks,   ///< a CAD block's boxes between the planes of its faces (any genus, no boundary)
+  polycube  ///< the boxes of a polycube map of the surface, carried back to it (any genus, no boundary)
 };
 
 inline const char* layout_class_name(Layout_class c)
@@ -45,6 +46,7 @@ inline const char* layout_class_name(Layout_class c)
   case Layout_class::cylinder: return "cylinder";
   case Layout_class::torus: return "torus";
   case Layout_class::blocks: return "blocks";
+  case Layout_class::polycube: return "polycube";
   default: return "pants";
   }
 }

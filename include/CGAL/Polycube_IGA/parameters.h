@@ -43,6 +43,7 @@ namespace Polycube_IGA {
   X(balance_pants_corners_t, balance_pants_corners)                                 \
   X(sphere_chain_t, sphere_chain)                                                   \
   X(orthogonal_blocks_t, orthogonal_blocks)                                         \
+  X(polycube_map_t, polycube_map)                                                   \
   /* spline fitting (lambda_1..3 of eq. 4.1) */                                     \
   X(stretching_weight_t, stretching_weight)                                         \
   X(bending_weight_t, bending_weight)                                               \
@@ -70,6 +71,7 @@ namespace Polycube_IGA {
   X(node_relocation_sweeps_t, node_relocation_sweeps)                             \
   X(node_relocation_retry_t, node_relocation_retry)                               \
   X(missing_part_cubes_t, missing_part_cubes)                                     \
+  X(polycube_retry_t, polycube_retry)                                             \
   X(untangling_budget_t, untangling_budget)
 
 namespace internal_np {

@@ -66,7 +66,8 @@ typename CGAL::Surface_mesh<P>::Face_index face_at(std::size_t i)
 /// vertex to the opposite corner of each incident triangle, so the mesh stays triangulated.
 /// The new point is the linear interpolation of the edge's ends (the surface does not move).
 /// Keeps the parent maps when they exist: the new vertex gets no_parent, the faces cut off
-/// inherit the "f:parent" of the face they were split from. Returns the halfedge from
+/// inherit the "f:parent" of the face they were split from; a "v:original_point" map (the
+/// points of a surface the mesh is a deformation of) is interpolated as the points are. Returns the halfedge from
 /// source(h) to the new vertex (h itself now runs from the new vertex to its old target).
 template <class P>
 typename CGAL::Surface_mesh<P>::Halfedge_index split_edge_at(CGAL::Surface_mesh<P>& m,
@@ -76,16 +77,20 @@ typename CGAL::Surface_mesh<P>::Halfedge_index split_edge_at(CGAL::Surface_mesh<
   using F = typename Mesh::Face_index;
   const auto vpar = m.template property_map<typename Mesh::Vertex_index, std::size_t>("v:parent");
   const auto fpar = m.template property_map<F, std::size_t>("f:parent");
-  const P& a = m.point(source(h, m));
-  const P& b = m.point(target(h, m));
+  const auto original = m.template property_map<typename Mesh::Vertex_index, P>("v:original_point");
   const double s = 1. - t;
-  const P x(s * CGAL::to_double(a.x()) + t * CGAL::to_double(b.x()), s * CGAL::to_double(a.y()) + t * CGAL::to_double(b.y()),
-            s * CGAL::to_double(a.z()) + t * CGAL::to_double(b.z()));
+  auto between = [&](const P& a, const P& b) {
+    return P(s * CGAL::to_double(a.x()) + t * CGAL::to_double(b.x()), s * CGAL::to_double(a.y()) + t * CGAL::to_double(b.y()),
+             s * CGAL::to_double(a.z()) + t * CGAL::to_double(b.z()));
+  };
+  const P x = between(m.point(source(h, m)), m.point(target(h, m)));
+  const P x0 = original.second ? between(original.first[source(h, m)], original.first[target(h, m)]) : x;
   const bool left = !is_border(h, m), right = !is_border(opposite(h, m), m);
   const F fl = left ? face(h, m) : F(), fr = right ? face(opposite(h, m), m) : F();
   const auto hn = CGAL::Euler::split_edge(h, m); // source(h) -> new, next(hn) == h
   const auto nv = target(hn, m);
   m.point(nv) = x;
+  if(original.second) original.first[nv] = x0;
   if(vpar.second) vpar.first[nv] = no_parent;
   if(left) {
     const auto g = CGAL::Euler::split_face(hn, next(h, m), m);

@@ -1,0 +1,511 @@
+// Copyright (c) 2026 Polycube_IGA contributors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// A polycube map of a closed surface: every face labelled with the nearest of the six
+// directions of a frame, the labels cleaned into charts, and the surface deformed so that
+// each chart lies on one plane perpendicular to its direction. The deformed surface is an
+// orthogonal polyhedron, whose boxes (orthogonal_grid.h), carried back to the surface, make
+// a layout that follows the shape's own directions: a CAD part's round holes, fillets and
+// slanted faces, which no harmonic cut of the pants path follows. The method is that of the
+// L1 polycube family (Gregson, Sheffer and Zhang 2011; Huang et al. 2014), read to learn;
+// here the labelling is smoothed by iterated conditional modes and the deformation is one
+// linear least-squares solve per axis, which keeps every edge's offset along that axis
+// while each chart's vertices share one coordinate. Read by the cuboid decomposition
+// (Cuboid_decomposition::polycube_blocks()).
+
+#ifndef CGAL_POLYCUBE_IGA_INTERNAL_POLYCUBE_MAP_H
+#define CGAL_POLYCUBE_IGA_INTERNAL_POLYCUBE_MAP_H
+
+#include <CGAL/Polycube_IGA/internal/bbox_diagonal.h>
+#include <CGAL/Polycube_IGA/internal/mesh_pieces.h>
+#include <CGAL/Polycube_IGA/internal/orthogonal_grid.h>
+#include <CGAL/Polycube_IGA/internal/triangle_projection.h>
+
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+#include <Eigen/Sparse>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <optional>
+#include <vector>
+
+namespace CGAL {
+namespace Polycube_IGA {
+namespace internal {
+
+/// Labels are 2 k + s: axis k of the frame, s = 0 along it, 1 against it.
+inline Eigen::Vector3d label_direction(const Eigen::Matrix3d& frame, int label)
+{
+  const Eigen::Vector3d a = frame.row(label / 2).transpose();
+  return label % 2 ? Eigen::Vector3d(-a) : a;
+}
+
+/// A frame's fit to a surface: the area-weighted mean of each normal's largest component
+/// (1 for an orthogonal polyhedron, about 0.83 for a sphere in any frame).
+inline double frame_alignment(const Eigen::Matrix3d& frame, const std::vector<Eigen::Vector3d>& normal,
+                              const std::vector<double>& area)
+{
+  double s = 0., a = 0.;
+  for(std::size_t f = 0; f < normal.size(); ++f) s += area[f] * (frame * normal[f]).cwiseAbs().maxCoeff(), a += area[f];
+  return a > 0. ? s / a : 0.;
+}
+
+/// A CAD part's own axes (rows, right-handed). The first: of the 64 largest faces' normals,
+/// the one (up to its sign) with the most area within 2 degrees, not the largest face's,
+/// which on a part with fillets can be one of theirs, a few degrees off the flat faces. The
+/// second: of the faces perpendicular to the first, the direction (modulo a quarter turn)
+/// that holds the most area. Empty for a surface without area.
+inline std::optional<Eigen::Matrix3d> flat_faces_frame(const std::vector<Eigen::Vector3d>& normal, const std::vector<double>& area)
+{
+  const double pi = 3.14159265358979323846;
+  std::vector<std::size_t> order(normal.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  const std::size_t tried = std::min<std::size_t>(64, order.size());
+  std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(tried), order.end(),
+                    [&](std::size_t a, std::size_t b) { return area[a] > area[b] || (area[a] == area[b] && a < b); });
+  std::optional<Eigen::Vector3d> first;
+  double most = 0.;
+  for(std::size_t c = 0; c < tried; ++c) {
+    const Eigen::Vector3d& n = normal[order[c]];
+    if(n.squaredNorm() == 0.) continue;
+    double held = 0.;
+    for(std::size_t i = 0; i < normal.size(); ++i)
+      if(std::abs(normal[i].dot(n)) > std::cos(2. * pi / 180.)) held += area[i];
+    if(held > most) most = held, first = n;
+  }
+  if(!first) return std::nullopt;
+  const Eigen::Vector3d a0 = *first, u = a0.unitOrthogonal(), w = a0.cross(u);
+  {
+    const int bins = 180; // half a degree each
+    std::vector<double> held(bins, 0.);
+    std::vector<double> angle(normal.size(), -1.);
+    for(std::size_t i = 0; i < normal.size(); ++i) {
+      if(!(std::abs(normal[i].dot(a0)) < std::sin(2. * pi / 180.)) || normal[i].squaredNorm() == 0.) continue;
+      double t = std::atan2(normal[i].dot(w), normal[i].dot(u));
+      t = std::fmod(t + 2. * pi, 0.5 * pi);
+      angle[i] = t;
+      held[std::size_t(std::min(bins - 1, int(t / (0.5 * pi) * bins)))] += area[i];
+    }
+    const int peak = int(std::max_element(held.begin(), held.end()) - held.begin());
+    const double centre = (peak + 0.5) * 0.5 * pi / bins;
+    double sum = 0., weight = 0.;
+    for(std::size_t i = 0; i < normal.size(); ++i) {
+      if(angle[i] < 0.) continue;
+      double d = angle[i] - centre;
+      d -= 0.5 * pi * std::round(d / (0.5 * pi));
+      if(std::abs(d) <= 1.5 * 0.5 * pi / bins) sum += area[i] * d, weight += area[i];
+    }
+    const double t = centre + (weight > 0. ? sum / weight : 0.);
+    Eigen::Matrix3d g;
+    g.row(0) = a0.transpose();
+    g.row(1) = (std::cos(t) * u + std::sin(t) * w).transpose();
+    g.row(2) = a0.cross(g.row(1).transpose()).transpose();
+    return g;
+  }
+}
+
+/// The frame for the labels, of three candidates: flat_faces_frame(), unless the eigenvectors
+/// of the area-weighted normal tensor (the directions the surface mostly faces) or the
+/// principal axes of the surface (an organic shape's length, width and depth) have a
+/// frame_alignment() better by 0.02.
+template <class Mesh>
+Eigen::Matrix3d polycube_frame(const Mesh& m, const std::vector<Eigen::Vector3d>& normal, const std::vector<double>& area)
+{
+  std::vector<Eigen::Matrix3d> candidates;
+  if(std::optional<Eigen::Matrix3d> f = flat_faces_frame(normal, area)) candidates.push_back(*f);
+  Eigen::Matrix3d tensor = Eigen::Matrix3d::Zero(), spread = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double total = 0.;
+  std::vector<Eigen::Vector3d> centroid(normal.size());
+  for(auto f : faces(m)) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for(auto v : vertices_around_face(halfedge(f, m), m)) {
+      const auto& p = m.point(v);
+      c += Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())) / 3.;
+    }
+    centroid[std::size_t(f)] = c;
+    centre += area[std::size_t(f)] * c, total += area[std::size_t(f)];
+  }
+  if(!(total > 0.)) return Eigen::Matrix3d::Identity();
+  centre /= total;
+  for(std::size_t f = 0; f < normal.size(); ++f) {
+    tensor += area[f] * normal[f] * normal[f].transpose();
+    const Eigen::Vector3d d = centroid[f] - centre;
+    spread += area[f] * d * d.transpose();
+  }
+  for(const Eigen::Matrix3d& s : {tensor, spread}) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(s);
+    Eigen::Matrix3d f = eig.eigenvectors().transpose();
+    if(f.determinant() < 0.) f.row(2) *= -1.;
+    candidates.push_back(f);
+  }
+  // The flat faces' frame unless another fits clearly better: on a CAD part with fillets
+  // the normal tensor's axes can lean a few degrees off its flat faces.
+  std::size_t best = 0;
+  for(std::size_t c = 1; c < candidates.size(); ++c)
+    if(frame_alignment(candidates[c], normal, area) > frame_alignment(candidates[best], normal, area) + 0.02) best = c;
+  return candidates[best];
+}
+
+/// The charts of a labelling: connected sets of faces of one label across edges. Returns
+/// each face's chart.
+template <class Mesh>
+std::vector<int> label_charts(const Mesh& m, const std::vector<int>& label, int* count = nullptr)
+{
+  std::vector<int> chart(num_faces(m), -1);
+  int n = 0;
+  for(auto f0 : faces(m)) {
+    if(chart[std::size_t(f0)] >= 0) continue;
+    std::vector<typename Mesh::Face_index> stack{f0};
+    chart[std::size_t(f0)] = n;
+    while(!stack.empty()) {
+      const auto f = stack.back();
+      stack.pop_back();
+      for(auto h : halfedges_around_face(halfedge(f, m), m)) {
+        const auto g = face(opposite(h, m), m);
+        if(g == Mesh::null_face() || chart[std::size_t(g)] >= 0 || label[std::size_t(g)] != label[std::size_t(f)]) continue;
+        chart[std::size_t(g)] = n;
+        stack.push_back(g);
+      }
+    }
+    ++n;
+  }
+  if(count) *count = n;
+  return chart;
+}
+
+/// The labels of the faces of `m` in `frame`: each face's nearest direction, smoothed by
+/// iterated conditional modes (a face takes the label of least area-weighted normal
+/// deviation plus `border_weight` times its border length, opposite labels never side by
+/// side), then charts smaller
+/// than `minimum_chart` of the area given to the neighbouring label they share the longest
+/// border with. Faces are visited in index order: the result is deterministic.
+template <class Mesh>
+std::vector<int> polycube_labels(const Mesh& m, const Eigen::Matrix3d& frame, const std::vector<Eigen::Vector3d>& normal,
+                                 const std::vector<double>& area, double border_weight = 1., double minimum_chart = 2e-3)
+{
+  const std::size_t nf = num_faces(m);
+  std::vector<int> label(nf, 0);
+  double total_area = 0., total_length = 0.;
+  for(auto e : edges(m)) total_length += std::sqrt(CGAL::to_double(CGAL::squared_distance(m.point(source(halfedge(e, m), m)), m.point(target(halfedge(e, m), m)))));
+  const double h = total_length / double(std::max<std::size_t>(1, num_edges(m)));
+  for(std::size_t f = 0; f < nf; ++f) {
+    total_area += area[f];
+    double best = -2.;
+    for(int l = 0; l < 6; ++l) {
+      const double d = normal[f].dot(label_direction(frame, l));
+      if(d > best + 1e-12) best = d, label[f] = l;
+    }
+  }
+  auto edge_length = [&](typename Mesh::Halfedge_index hh) {
+    return std::sqrt(CGAL::to_double(CGAL::squared_distance(m.point(source(hh, m)), m.point(target(hh, m)))));
+  };
+  // A border between two labels costs its length times the mean edge length (an area);
+  // between opposite labels three times that, a fold the polycube cannot have.
+  auto pair_cost = [](int a, int b) { return a == b ? 0. : (a / 2 == b / 2 ? 3. : 1.); };
+  for(int sweep = 0; sweep < 50; ++sweep) {
+    bool changed = false;
+    for(auto f : faces(m)) {
+      const std::size_t i = std::size_t(f);
+      double best = std::numeric_limits<double>::infinity();
+      int chosen = label[i];
+      for(int l = 0; l < 6; ++l) {
+        double e = area[i] * (1. - normal[i].dot(label_direction(frame, l)));
+        for(auto hh : halfedges_around_face(halfedge(f, m), m)) {
+          const auto g = face(opposite(hh, m), m);
+          if(g != Mesh::null_face()) e += border_weight * h * edge_length(hh) * pair_cost(l, label[std::size_t(g)]);
+        }
+        if(e < best - 1e-15 * (1. + std::abs(best))) best = e, chosen = l;
+      }
+      if(chosen != label[i]) label[i] = chosen, changed = true;
+    }
+    if(!changed) break;
+  }
+  // Small charts: merged into a neighbour, smallest first, until none is left.
+  for(int round = 0; round < 100; ++round) {
+    int n = 0;
+    const std::vector<int> chart = label_charts(m, label, &n);
+    std::vector<double> chart_area(std::size_t(n), 0.);
+    for(std::size_t f = 0; f < nf; ++f) chart_area[std::size_t(chart[f])] += area[f];
+    int smallest = -1;
+    for(int c = 0; c < n; ++c)
+      if(chart_area[std::size_t(c)] < minimum_chart * total_area && (smallest < 0 || chart_area[std::size_t(c)] < chart_area[std::size_t(smallest)]))
+        smallest = c;
+    if(smallest < 0) break;
+    std::array<double, 6> border{};
+    for(auto f : faces(m)) {
+      if(chart[std::size_t(f)] != smallest) continue;
+      for(auto hh : halfedges_around_face(halfedge(f, m), m)) {
+        const auto g = face(opposite(hh, m), m);
+        if(g != Mesh::null_face() && chart[std::size_t(g)] != smallest) border[std::size_t(label[std::size_t(g)])] += edge_length(hh);
+      }
+    }
+    int to = -1;
+    for(int l = 0; l < 6; ++l)
+      if(border[std::size_t(l)] > 0. && (to < 0 || border[std::size_t(l)] > border[std::size_t(to)])) to = l;
+    if(to < 0) break; // the whole surface is one chart
+    for(std::size_t f = 0; f < nf; ++f)
+      if(chart[f] == smallest) label[f] = to;
+  }
+  return label;
+}
+
+/// Splits each edge whose two faces share a label but whose two ends both lie on chart
+/// borders, at its middle: a triangle with its three corners on one border would otherwise
+/// be flattened onto that border's line. `label` follows the split faces.
+template <class P>
+void split_edges_between_borders(CGAL::Surface_mesh<P>& m, std::vector<int>& label)
+{
+  using Mesh = CGAL::Surface_mesh<P>;
+  using F = typename Mesh::Face_index;
+  auto parent = m.template add_property_map<F, std::size_t>("f:parent", std::size_t(0)).first;
+  for(auto f : faces(m)) parent[f] = std::size_t(label[std::size_t(f)]);
+  std::vector<bool> on_border(num_vertices(m), false);
+  for(auto e : edges(m)) {
+    const auto h = halfedge(e, m);
+    if(label[std::size_t(face(h, m))] != label[std::size_t(face(opposite(h, m), m))])
+      on_border[std::size_t(source(h, m))] = on_border[std::size_t(target(h, m))] = true;
+  }
+  std::vector<typename Mesh::Halfedge_index> splits;
+  for(auto e : edges(m)) {
+    const auto h = halfedge(e, m);
+    if(label[std::size_t(face(h, m))] == label[std::size_t(face(opposite(h, m), m))] && on_border[std::size_t(source(h, m))] &&
+       on_border[std::size_t(target(h, m))])
+      splits.push_back(h);
+  }
+  for(auto h : splits) split_edge_at(m, h, 0.5);
+  label.assign(num_faces(m), 0);
+  for(auto f : faces(m)) label[std::size_t(f)] = int(parent[f]);
+  m.remove_property_map(parent);
+}
+
+/// The coordinates along axis `k` of the vertices of `m` (`x0`: their original ones in the
+/// frame) that give every edge (source to target) its `offset` along it best in the
+/// least-squares sense while the
+/// vertices of each chart facing along that axis share one coordinate (charts meeting at a
+/// vertex share it too), and so do the charts whose coordinates `snap` (as solved without
+/// it, when given) puts within `snap_distance` of each other and that face the same way.
+template <class P>
+std::optional<std::vector<double>> polycube_axis(const CGAL::Surface_mesh<P>& m, const std::vector<Eigen::Vector3d>& x0,
+                                                 const std::vector<Eigen::Vector3d>& offset, const std::vector<int>& label, int k,
+                                                 const std::vector<double>* snap = nullptr, double snap_distance = 0.)
+{
+  const std::size_t nv = num_vertices(m);
+  std::vector<std::size_t> root(nv);
+  std::iota(root.begin(), root.end(), std::size_t(0));
+  auto find = [&](std::size_t a) {
+    while(root[a] != a) a = root[a] = root[root[a]];
+    return a;
+  };
+  auto unite = [&](std::size_t a, std::size_t b) {
+    a = find(a), b = find(b);
+    if(a != b) root[std::max(a, b)] = std::min(a, b);
+  };
+  std::vector<int> faces_way(nv, 0); // per vertex: 1 along the axis, 2 against it
+  for(auto f : faces(m)) {
+    const int l = label[std::size_t(f)];
+    if(l / 2 != k) continue;
+    const auto h = halfedge(f, m);
+    for(auto v : vertices_around_face(h, m)) unite(std::size_t(v), std::size_t(target(h, m))), faces_way[std::size_t(v)] |= 1 << (l % 2);
+  }
+  if(snap) {
+    // Charts one way, nearly level: one plane (two walls of two holes in a row, the two
+    // halves of a bar on either side of a stem), or the planes between them cut thin boxes
+    // and run through the solid.
+    std::map<std::size_t, int> way;
+    for(std::size_t v = 0; v < nv; ++v)
+      if(faces_way[v]) way[find(v)] |= faces_way[v];
+    std::vector<std::pair<double, std::size_t>> level;
+    for(const auto& c : way)
+      if(c.second != 3) level.push_back({(*snap)[c.first], c.first});
+    std::sort(level.begin(), level.end());
+    for(int w = 1; w <= 2; ++w) {
+      std::optional<std::pair<double, std::size_t>> last;
+      for(const auto& c : level) {
+        if(way[c.second] != w) continue;
+        if(last && c.first - last->first <= snap_distance) unite(last->second, c.second);
+        last = c;
+      }
+    }
+  }
+  std::vector<int> unknown(nv, -1);
+  int n = 0;
+  for(std::size_t v = 0; v < nv; ++v)
+    if(unknown[find(v)] < 0) unknown[find(v)] = n++;
+  std::vector<Eigen::Triplet<double>> t;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+  for(auto e : edges(m)) {
+    const auto h = halfedge(e, m);
+    const std::size_t a = std::size_t(source(h, m)), b = std::size_t(target(h, m));
+    const int i = unknown[find(a)], j = unknown[find(b)];
+    if(i == j) continue;
+    const double d = -offset[std::size_t(e)][k];
+    t.emplace_back(i, i, 1.), t.emplace_back(j, j, 1.), t.emplace_back(i, j, -1.), t.emplace_back(j, i, -1.);
+    rhs[i] += d, rhs[j] -= d;
+  }
+  // A faint pull to the original coordinates fixes the translation.
+  std::vector<double> count(std::size_t(n), 0.), sum(std::size_t(n), 0.);
+  for(std::size_t v = 0; v < nv; ++v) count[std::size_t(unknown[find(v)])] += 1., sum[std::size_t(unknown[find(v)])] += x0[v][k];
+  const double weak = 1e-6;
+  for(int i = 0; i < n; ++i) t.emplace_back(i, i, weak * count[std::size_t(i)]), rhs[i] += weak * sum[std::size_t(i)];
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
+  if(solver.info() != Eigen::Success) return std::nullopt;
+  const Eigen::VectorXd x = solver.solve(rhs);
+  if(solver.info() != Eigen::Success || !x.allFinite()) return std::nullopt;
+  std::vector<double> out(nv);
+  for(std::size_t v = 0; v < nv; ++v) out[v] = x[unknown[find(v)]];
+  return out;
+}
+
+/// The faces of `m` that `q` (positions in the frame, by vertex) does not make face their
+/// label's way with an area that is not negligible.
+template <class P>
+std::vector<typename CGAL::Surface_mesh<P>::Face_index> turned_faces(const CGAL::Surface_mesh<P>& m, const std::vector<int>& label,
+                                                                     const std::vector<Eigen::Vector3d>& q)
+{
+  Eigen::Vector3d lo = q.empty() ? Eigen::Vector3d::Zero() : q[0], hi = lo;
+  for(const auto& p : q) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double diagonal = (hi - lo).norm();
+  std::vector<typename CGAL::Surface_mesh<P>::Face_index> out;
+  for(auto f : faces(m)) {
+    std::array<Eigen::Vector3d, 3> x;
+    std::size_t i = 0;
+    for(auto v : vertices_around_face(halfedge(f, m), m)) x[i++] = q[std::size_t(v)];
+    const Eigen::Vector3d n = (x[1] - x[0]).cross(x[2] - x[0]);
+    const int l = label[std::size_t(f)];
+    if(!((l % 2 ? -1. : 1.) * n[l / 2] > 1e-12 * diagonal * diagonal)) out.push_back(f);
+  }
+  return out;
+}
+
+/// Smooths the free coordinates (those of the axes that none of its faces' labels is on) of
+/// the vertices near the turned faces of `q` towards the mean of their neighbours', a few
+/// rings at a time, until no face is turned or `sweeps` are done: a reflex corner of a
+/// chart, where a fillet was, otherwise keeps the triangles that spanned the fillet across
+/// the corner. Returns whether no face is turned.
+template <class P>
+bool unfold_polycube(const CGAL::Surface_mesh<P>& m, const std::vector<int>& label, std::vector<Eigen::Vector3d>& q, int sweeps = 200)
+{
+  using V = typename CGAL::Surface_mesh<P>::Vertex_index;
+  std::vector<int> fixed(num_vertices(m), 0); // bit k: the coordinate along axis k is a chart's
+  for(auto f : faces(m))
+    for(auto v : vertices_around_face(halfedge(f, m), m)) fixed[std::size_t(v)] |= 1 << (label[std::size_t(f)] / 2);
+  for(int sweep = 0; sweep < sweeps; ++sweep) {
+    const auto turned = turned_faces(m, label, q);
+    if(turned.empty()) return true;
+    std::vector<bool> near(num_vertices(m), false);
+    std::vector<V> ring;
+    for(auto f : turned)
+      for(auto v : vertices_around_face(halfedge(f, m), m)) near[std::size_t(v)] = true, ring.push_back(v);
+    for(int r = 0; r < 2; ++r) {
+      std::vector<V> next;
+      for(V v : ring)
+        for(V w : vertices_around_target(halfedge(v, m), m))
+          if(!near[std::size_t(w)]) near[std::size_t(w)] = true, next.push_back(w);
+      ring = std::move(next);
+    }
+    for(V v : vertices(m)) {
+      if(!near[std::size_t(v)] || fixed[std::size_t(v)] == 7) continue;
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+      double count = 0.;
+      for(V w : vertices_around_target(halfedge(v, m), m)) mean += q[std::size_t(w)], count += 1.;
+      for(int k = 0; k < 3; ++k)
+        if(!(fixed[std::size_t(v)] & (1 << k))) q[std::size_t(v)][k] = mean[k] / count;
+    }
+  }
+  return turned_faces(m, label, q).empty();
+}
+
+/// Whether `q` (positions in the frame, by vertex) makes `m` a polycube for its labels
+/// after unfold_polycube(), which may move `q`: no face turned, the surface not through
+/// itself.
+template <class P>
+bool is_polycube(const CGAL::Surface_mesh<P>& m, const std::vector<int>& label, std::vector<Eigen::Vector3d>& q)
+{
+  if(!unfold_polycube(m, label, q)) return false;
+  CGAL::Surface_mesh<P> deformed = m;
+  for(auto v : vertices(deformed)) deformed.point(v) = P(q[std::size_t(v)].x(), q[std::size_t(v)].y(), q[std::size_t(v)].z());
+  return !CGAL::Polygon_mesh_processing::does_self_intersect(deformed);
+}
+
+/// The polycube positions (world coordinates, by vertex) of `m` with labels `label` in
+/// `frame`: polycube_axis() for each axis, then again with the charts that face one way
+/// within `snap` of the polycube's extent along their axis on one plane, if that is still a
+/// polycube. Empty when neither is (is_polycube()).
+template <class P>
+std::optional<std::vector<Eigen::Vector3d>> polycube_positions(const CGAL::Surface_mesh<P>& m, const Eigen::Matrix3d& frame,
+                                                               const std::vector<int>& label, double snap = 0.05)
+{
+  const std::size_t nv = num_vertices(m);
+  std::vector<Eigen::Vector3d> x0(nv);
+  for(auto v : vertices(m)) {
+    const auto& p = m.point(v);
+    x0[std::size_t(v)] = frame * Eigen::Vector3d(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+  }
+  // Each edge's offset turned with its faces: each face by the least rotation that takes its
+  // normal to its label's direction, the two turned edges averaged. The charts are then flat
+  // in the offsets already, and the solve has less to bend (a fillet's faces, 45 degrees
+  // off, would otherwise pull the vertices of its two charts across each other).
+  std::vector<Eigen::Matrix3d> turn(num_faces(m), Eigen::Matrix3d::Identity());
+  for(auto f : faces(m)) {
+    std::array<Eigen::Vector3d, 3> x;
+    std::size_t i = 0;
+    for(auto v : vertices_around_face(halfedge(f, m), m)) x[i++] = x0[std::size_t(v)];
+    const Eigen::Vector3d n = (x[1] - x[0]).cross(x[2] - x[0]);
+    Eigen::Vector3d d = Eigen::Vector3d::Zero();
+    d[label[std::size_t(f)] / 2] = label[std::size_t(f)] % 2 ? -1. : 1.;
+    if(n.squaredNorm() > 0.) turn[std::size_t(f)] = Eigen::Quaterniond::FromTwoVectors(n.normalized(), d).toRotationMatrix();
+  }
+  std::vector<Eigen::Vector3d> offset(num_edges(m));
+  for(auto e : edges(m)) {
+    const auto h = halfedge(e, m);
+    const Eigen::Vector3d x = x0[std::size_t(target(h, m))] - x0[std::size_t(source(h, m))];
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    int count = 0;
+    for(auto g : {face(h, m), face(opposite(h, m), m)})
+      if(g != CGAL::Surface_mesh<P>::null_face()) sum += turn[std::size_t(g)] * x, ++count;
+    offset[std::size_t(e)] = count ? Eigen::Vector3d(sum / count) : x;
+  }
+  std::array<std::vector<double>, 3> free;
+  for(int k = 0; k < 3; ++k) {
+    std::optional<std::vector<double>> x = polycube_axis(m, x0, offset, label, k);
+    if(!x) return std::nullopt;
+    free[std::size_t(k)] = std::move(*x);
+  }
+  auto positions = [&](const std::array<std::vector<double>, 3>& c) {
+    std::vector<Eigen::Vector3d> q(nv);
+    for(std::size_t v = 0; v < nv; ++v) q[v] = Eigen::Vector3d(c[0][v], c[1][v], c[2][v]);
+    return q;
+  };
+  std::array<std::vector<double>, 3> snapped;
+  for(int k = 0; k < 3; ++k) {
+    const auto range = std::minmax_element(free[std::size_t(k)].begin(), free[std::size_t(k)].end());
+    std::optional<std::vector<double>> x = polycube_axis(m, x0, offset, label, k, &free[std::size_t(k)], snap * (*range.second - *range.first));
+    if(x) snapped[std::size_t(k)] = std::move(*x);
+  }
+  std::vector<Eigen::Vector3d> q;
+  if(!snapped[0].empty() && !snapped[1].empty() && !snapped[2].empty()) q = positions(snapped);
+  if(q.empty() || !is_polycube(m, label, q)) {
+    q = positions(free);
+    if(!is_polycube(m, label, q)) return std::nullopt;
+  }
+  for(auto& p : q) p = frame.transpose() * p;
+  return q;
+}
+
+} // namespace internal
+} // namespace Polycube_IGA
+} // namespace CGAL
+
+#endif // CGAL_POLYCUBE_IGA_INTERNAL_POLYCUBE_MAP_H
