@@ -647,7 +647,7 @@ TEST_CASE("a polycube map lays CAD parts with round holes and fillets out on its
   CHECK(S.cuboids.size() == 1);
 }
 
-TEST_CASE("a polycube map is refused with a reason: a surface with a boundary, one whose labels make no polycube", "[cuboid][polycube]")
+TEST_CASE("a polycube map is refused with a reason: a surface with a boundary, labels that make no polycube, a box edge inside", "[cuboid][polycube]")
 {
   const auto polycube = PI::parameters::polycube_map(true);
   const Mesh open = load(write_text("plate_open.off", voxel_plate_with(1, 1)));
@@ -663,6 +663,15 @@ TEST_CASE("a polycube map is refused with a reason: a surface with a boundary, o
     FAIL("eight.off was laid out on a polycube map");
   } catch(const PI::Internal_error& e) {
     CHECK(e.reason() == "no_polycube_map");
+  }
+  // joint.off: its polycube is a box under a smaller one whose hole's planes cut the larger
+  // one, so a box edge would run inside the solid, where the layout holds no node or arc.
+  try {
+    PI::Cuboid_decomposition<Mesh>()(load(data("joint.off")), polycube);
+    FAIL("joint.off was laid out on a polycube map");
+  } catch(const PI::Internal_error& e) {
+    CHECK(e.reason() == "no_polycube_map");
+    CHECK(std::string(e.what()).find("a box edge would run inside the solid") != std::string::npos);
   }
 }
 

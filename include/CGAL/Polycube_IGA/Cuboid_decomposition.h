@@ -777,15 +777,17 @@ private:
   /// the interfaces. Any other layout would cross the sharp edges, which no smooth face
   /// follows (an L-block as a chain of cuboids: 2.4% of the diagonal off at a corner inside
   /// a cap). Empty for a box (feature_cube()), when a grid edge would run inside the solid,
-  /// or when the boxes do not make a valid layout.
+  /// or when the boxes do not make a valid layout; `why` then says which, unless the mesh
+  /// is not an orthogonal polyhedron at all.
   ///
   /// With `layout_class` polycube, `m` is a polycube map of a surface whose points are the
   /// map "v:original_point" of `m` (polycube_blocks()): the grid is that of the polycube, the
   /// layout's mesh the surface, and one box is a layout too.
-  static std::optional<Layout> orthogonal_blocks(Mesh m, int genus, Layout_class layout_class = Layout_class::blocks)
+  static std::optional<Layout> orthogonal_blocks(Mesh m, int genus, Layout_class layout_class = Layout_class::blocks,
+                                                 std::string* why = nullptr)
   {
     using namespace internal;
-    const std::optional<Orthogonal_grid> grid = orthogonal_grid(m);
+    const std::optional<Orthogonal_grid> grid = orthogonal_grid(m, 2., 256, why);
     const long boxes = grid ? long(std::count(grid->inside.begin(), grid->inside.end(), true)) : 0;
     if(boxes < (layout_class == Layout_class::polycube ? 1 : 2)) return std::nullopt;
     const Orthogonal_grid& G = *grid;
@@ -871,9 +873,14 @@ private:
         m.remove_property_map(original.first);
       }
       Layout L = finish_layout(std::move(m), bld, layout_class, genus, 0, 0);
-      if(!L.validate().is_valid()) return std::nullopt;
+      const Layout_validation v = L.validate();
+      if(!v.is_valid()) {
+        if(why) *why = "its boxes make no valid layout: " + v.problems.front();
+        return std::nullopt;
+      }
       return L;
-    } catch(const Internal_error&) {
+    } catch(const Internal_error& e) {
+      if(why) *why = e.what();
       return std::nullopt;
     }
   }
@@ -909,8 +916,9 @@ private:
       const Eigen::Vector3d& p = (*position)[std::size_t(v)];
       m.point(v) = Point(p.x(), p.y(), p.z());
     }
-    std::optional<Layout> L = orthogonal_blocks(std::move(m), genus, Layout_class::polycube);
-    if(!L) return fail("the polycube's boxes make no layout (a box edge inside the solid, over 256 boxes, or an invalid layout)");
+    std::string boxes;
+    std::optional<Layout> L = orthogonal_blocks(std::move(m), genus, Layout_class::polycube, &boxes);
+    if(!L) return fail("the polycube makes no layout of boxes: " + boxes);
     return L;
   }
 

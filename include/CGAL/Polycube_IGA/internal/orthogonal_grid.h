@@ -27,6 +27,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -72,10 +73,16 @@ struct Orthogonal_grid
 
 /// The grid of `m` when it is an orthogonal polyhedron (every face's normal within
 /// `angle_degrees` of an axis, every face on one of its axis's planes) whose box edges all
-/// lie on the surface, with at most `maximum_cells` boxes; empty otherwise.
+/// lie on the surface, with at most `maximum_cells` boxes; empty otherwise, and then, for an
+/// orthogonal polyhedron, `why` says what is wrong with its boxes.
 template <class Mesh>
-std::optional<Orthogonal_grid> orthogonal_grid(const Mesh& m, double angle_degrees = 2., std::size_t maximum_cells = 256)
+std::optional<Orthogonal_grid> orthogonal_grid(const Mesh& m, double angle_degrees = 2., std::size_t maximum_cells = 256,
+                                               std::string* why = nullptr)
 {
+  auto refuse = [&](const std::string& reason) -> std::optional<Orthogonal_grid> {
+    if(why) *why = reason;
+    return std::nullopt;
+  };
   using K = typename CGAL::Kernel_traits<typename Mesh::Point>::Kernel;
   if(num_faces(m) == 0) return std::nullopt;
   std::vector<Eigen::Vector3d> normal(num_faces(m));
@@ -124,7 +131,9 @@ std::optional<Orthogonal_grid> orthogonal_grid(const Mesh& m, double angle_degre
     if(g.planes[k].size() < 2) return std::nullopt;
   }
   const std::array<int, 3> n = g.cells();
-  if(std::size_t(n[0]) * std::size_t(n[1]) * std::size_t(n[2]) > 64 * maximum_cells) return std::nullopt;
+  if(std::size_t(n[0]) * std::size_t(n[1]) * std::size_t(n[2]) > 64 * maximum_cells)
+    return refuse("its grid has " + std::to_string(std::size_t(n[0]) * std::size_t(n[1]) * std::size_t(n[2])) + " cells, over " +
+                  std::to_string(64 * maximum_cells));
   // The cells inside: their centres, by the exact side-of-mesh test.
   CGAL::Side_of_triangle_mesh<Mesh, K> side(m);
   g.inside.assign(std::size_t(n[0] * n[1] * n[2]), false);
@@ -140,7 +149,8 @@ std::optional<Orthogonal_grid> orthogonal_grid(const Mesh& m, double angle_degre
         g.inside[std::size_t(i + n[0] * (j + n[1] * l))] = in;
         count += in ? 1 : 0;
       }
-  if(count == 0 || count > maximum_cells) return std::nullopt;
+  if(count == 0) return refuse("no grid cell is inside it");
+  if(count > maximum_cells) return refuse(std::to_string(count) + " boxes, over " + std::to_string(maximum_cells));
   // Every edge of a box on the surface: not all four cells around it inside.
   for(std::size_t k = 0; k < 3; ++k) {
     const std::size_t b = (k + 1) % 3, d = (k + 2) % 3;
@@ -153,7 +163,15 @@ std::optional<Orthogonal_grid> orthogonal_grid(const Mesh& m, double angle_degre
             c[k] = l, c[b] = j - (s & 1), c[d] = i - (s >> 1);
             around += g.is_inside(c) ? 1 : 0;
           }
-          if(around == 4) return std::nullopt;
+          if(around == 4) {
+            Eigen::Vector3d u;
+            u[Eigen::Index(k)] = 0.5 * (g.planes[k][std::size_t(l)] + g.planes[k][std::size_t(l) + 1]);
+            u[Eigen::Index(b)] = g.planes[b][std::size_t(j)];
+            u[Eigen::Index(d)] = g.planes[d][std::size_t(i)];
+            const Eigen::Vector3d x = g.frame.transpose() * u;
+            return refuse("a box edge would run inside the solid, through (" + std::to_string(x.x()) + ", " + std::to_string(x.y()) +
+                          ", " + std::to_string(x.z()) + ")");
+          }
         }
   }
   return g;
