@@ -867,8 +867,9 @@ auto build_with_class_variants(const TriangleMesh& tm, const NamedParameters& np
 /// (Cuboid_decomposition's `polycube_map`) from the start. `polycube_retry` (true): a closed
 /// surface whose layouts above give no valid volume (nor blocks) is built again on a polycube
 /// map's boxes, which follow a CAD part's round holes and fillets, and that volume is kept if
-/// valid (a T with filleted edges: 2 of 47 patches uncertified and 2.1% of the diagonal off
-/// as one cube, valid on 4 boxes at 0.2%); `polycube_retried` of the model says it was tried.
+/// valid (`t_block_filleted.off`, a T with filleted edges: 5 of 42 patches uncertified and
+/// 2.54% of the diagonal off as a chain of 6, valid on 4 boxes at 0.37%); `polycube_retried`
+/// of the model says it was tried.
 /// `belt_phases` (4, at most 8): a closed genus-0 surface whose volume is not valid is built
 /// again on layouts whose belt nodes are moved by 1/8, 2/8, ... of the zigzag's period
 /// (Cuboid_decomposition's `belt_phase`), and the first valid one is kept; 1: never.
