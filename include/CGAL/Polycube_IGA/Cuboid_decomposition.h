@@ -899,12 +899,7 @@ private:
       if(why) *why = reason;
       return std::nullopt;
     };
-    std::vector<Eigen::Vector3d> normal(num_faces(m));
-    std::vector<double> area(num_faces(m));
-    for(F f : faces(m)) {
-      normal[std::size_t(f)] = unit_face_normal(m, f);
-      area[std::size_t(f)] = CGAL::to_double(CGAL::Polygon_mesh_processing::face_area(f, m));
-    }
+    const auto [normal, area] = face_normals_and_areas(m);
     const Eigen::Matrix3d frame = polycube_frame(m, normal, area);
     std::vector<int> label = polycube_labels(m, frame, normal, area);
     split_edges_between_borders(m, label);

@@ -71,6 +71,19 @@ struct Orthogonal_grid
   }
 };
 
+/// Each face's unit normal (unit_face_normal()) and area, by face index.
+template <class Mesh>
+std::pair<std::vector<Eigen::Vector3d>, std::vector<double>> face_normals_and_areas(const Mesh& m)
+{
+  std::vector<Eigen::Vector3d> normal(num_faces(m));
+  std::vector<double> area(num_faces(m));
+  for(auto f : faces(m)) {
+    normal[std::size_t(f)] = unit_face_normal(m, f);
+    area[std::size_t(f)] = CGAL::to_double(CGAL::Polygon_mesh_processing::face_area(f, m));
+  }
+  return {std::move(normal), std::move(area)};
+}
+
 /// The grid of `m` when it is an orthogonal polyhedron (every face's normal within
 /// `angle_degrees` of an axis, every face on one of its axis's planes) whose box edges all
 /// lie on the surface, with at most `maximum_cells` boxes; empty otherwise, and then, for an
@@ -85,12 +98,7 @@ std::optional<Orthogonal_grid> orthogonal_grid(const Mesh& m, double angle_degre
   };
   using K = typename CGAL::Kernel_traits<typename Mesh::Point>::Kernel;
   if(num_faces(m) == 0) return std::nullopt;
-  std::vector<Eigen::Vector3d> normal(num_faces(m));
-  std::vector<double> area(num_faces(m));
-  for(auto f : faces(m)) {
-    normal[std::size_t(f)] = unit_face_normal(m, f);
-    area[std::size_t(f)] = CGAL::to_double(CGAL::Polygon_mesh_processing::face_area(f, m));
-  }
+  const auto [normal, area] = face_normals_and_areas(m);
   // Axes: the largest face's normal, then the largest face's perpendicular to it.
   const double radians = angle_degrees * 3.14159265358979323846 / 180., along = std::cos(radians), across = std::sin(radians);
   std::size_t first = 0;
