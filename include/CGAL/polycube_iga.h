@@ -224,6 +224,9 @@ struct Trivariate_model
   /// Whether a layout on a polycube map was tried after the first layouts gave no valid
   /// volume (see `polycube_retry` in build_trivariate_model()).
   bool polycube_retried = false;
+  /// Whether a layout on a polycube map was tried first, the surface being nearly an
+  /// orthogonal polyhedron (see `polycube_first_alignment` in build_trivariate_model()).
+  bool polycube_first = false;
   /// Jacobian samples that the untangling's energy evaluations visited over the whole run,
   /// and whether that reached `untangling_budget` (build_trivariate_model()), which then
   /// stopped the untangling.
@@ -870,6 +873,12 @@ auto build_with_class_variants(const TriangleMesh& tm, const NamedParameters& np
 /// valid (`t_block_filleted.off`, a T with filleted edges: 5 of 42 patches uncertified and
 /// 2.54% of the diagonal off as a chain of 6, valid on 4 boxes at 0.37%); `polycube_retried`
 /// of the model says it was tried.
+/// `polycube_first_alignment` (0.95): a closed surface that is not a CAD block and whose
+/// normals align with three axes at least this much (Cuboid_decomposition::polycube_alignment():
+/// the filleted T 0.96, the plate with two round holes 0.99, organic shapes 0.83 to 0.92) is
+/// laid out on its polycube map first, and that volume is kept if valid; otherwise the
+/// layouts above follow and the retry is not made again. Above 1: never; `polycube_first` of
+/// the model says it was tried.
 /// `belt_phases` (4, at most 8): a closed genus-0 surface whose volume is not valid is built
 /// again on layouts whose belt nodes are moved by 1/8, 2/8, ... of the zigzag's period
 /// (Cuboid_decomposition's `belt_phase`), and the first valid one is kept; 1: never.
@@ -916,23 +925,71 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
                            "): a larger one lets it go on, at that cost");
     return std::move(m);
   };
+  using Model = std::decay_t<decltype(*internal::build_on_layout(tm, np, progress, budget, internal::Layout_variant(), false, false, nullptr))>;
+  // The volume on the boxes of a polycube map; empty, with the reason, when it makes none.
+  auto on_polycube_map = [&](std::string& failure) {
+    internal::Layout_variant on_polycube;
+    on_polycube.polycube_map = true;
+    on_polycube.sphere_chain = false;
+    std::optional<Model> result;
+    try {
+      result = internal::build_on_layout(tm, np, progress, budget, on_polycube, false, false, nullptr);
+    } catch(const Error& e) {
+      failure = e.reason() + ": " + e.what();
+    }
+    return result;
+  };
+  const bool closed = CGAL::is_closed(tm);
+  const bool polycube_given = option(np, internal_np::polycube_map, false);
+  // A CAD part with fillets, round holes or slanted faces (its faces mostly along three axes,
+  // not all: a CAD block has its own boxes) is laid out on its polycube map first. Its
+  // harmonic layouts cross those faces, and on the shipped filleted T and plate with two
+  // round holes they were invalid after minutes of retries, where the polycube's boxes are
+  // valid at once. Organic shapes (alignment 0.83 to 0.92) never try it first.
+  const double first_alignment = option(np, internal_np::polycube_first_alignment, 0.95);
+  if(!(first_alignment >= 0.)) throw Invalid_input_error("invalid_parameter", "polycube_first_alignment must not be negative or NaN");
+  std::optional<Model> polycube_tried; // tried first, not valid
+  std::string polycube_failure;
+  if(closed && !polycube_given && first_alignment <= 1.) {
+    const auto [alignment, axis_aligned] = Cuboid_decomposition<TriangleMesh>::polycube_alignment(tm);
+    if(!axis_aligned && alignment >= first_alignment) {
+      std::optional<Model> first = on_polycube_map(polycube_failure);
+      if(first && first->is_valid()) {
+        first->polycube_first = true;
+        first->warnings.insert(first->warnings.begin(), "laid out on a polycube map (" + std::to_string(first->layout.cuboids.size()) +
+                                                          " boxes) first: its faces' alignment with three axes is " +
+                                                          internal::short_number(alignment) + ", at least polycube_first_alignment " +
+                                                          internal::short_number(first_alignment));
+        return finished(*first);
+      }
+      polycube_tried = std::move(first);
+      if(polycube_failure.empty() && !polycube_tried) polycube_failure = "no layout";
+    }
+  }
   auto model = internal::build_with_class_variants(tm, np, progress, budget);
+  if(polycube_tried || !polycube_failure.empty()) {
+    model.polycube_first = true;
+    if(polycube_tried) {
+      std::vector<std::pair<std::string, double>> seconds;
+      internal::append_stage_seconds(seconds, polycube_tried->stage_seconds, ", polycube map first");
+      seconds.insert(seconds.end(), model.stage_seconds.begin(), model.stage_seconds.end());
+      model.stage_seconds = std::move(seconds);
+      model.warnings.insert(model.warnings.begin(), "a layout on a polycube map (" + std::to_string(polycube_tried->layout.cuboids.size()) +
+                                                      " boxes) was tried first and gave no valid volume (" +
+                                                      internal::comma_list(polycube_tried->invalidity_reasons()) + ")");
+    } else
+      model.warnings.insert(model.warnings.begin(), "a layout on a polycube map was tried first and failed: " + polycube_failure);
+  }
   if(model.is_valid()) return finished(model);
   // A closed surface whose layout crosses the shape's own directions (a CAD part's round
   // holes, fillets and slanted faces under harmonic cuts) may be valid on the boxes of a
   // polycube map, which follow them.
-  if(option(np, internal_np::polycube_retry, true) && !option(np, internal_np::polycube_map, false) &&
-     model.layout.layout_class != Layout_class::blocks && CGAL::is_closed(tm)) {
+  if(option(np, internal_np::polycube_retry, true) && !polycube_given && !model.polycube_first &&
+     model.layout.layout_class != Layout_class::blocks && closed) {
     model.polycube_retried = true;
-    internal::Layout_variant on_polycube;
-    on_polycube.polycube_map = true;
-    on_polycube.sphere_chain = false;
-    std::optional<std::decay_t<decltype(model)>> other;
-    try {
-      other = internal::build_on_layout(tm, np, progress, budget, on_polycube, false, false, nullptr);
-    } catch(const Error& e) {
-      model.warnings.push_back("a layout on a polycube map was tried too and failed: " + e.reason() + ": " + e.what());
-    }
+    std::string failure;
+    std::optional<Model> other = on_polycube_map(failure);
+    if(!failure.empty()) model.warnings.push_back("a layout on a polycube map was tried too and failed: " + failure);
     if(other && other->is_valid()) {
       other->polycube_retried = true;
       other->warnings.insert(other->warnings.begin(), "laid out on a polycube map (" + std::to_string(other->layout.cuboids.size()) +

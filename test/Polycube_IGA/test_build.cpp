@@ -17,6 +17,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <cstdio>
 #include <fstream>
@@ -806,26 +807,64 @@ TEST_CASE("build turns CAD blocks into valid volumes on their boxes, exactly on 
   }
 }
 
-TEST_CASE("build retries a filleted T on a polycube map: valid on its boxes where its genus layout is not", "[build][polycube]")
+TEST_CASE("build lays a filleted T out on its polycube map first, or retries it there: valid on its boxes where its genus layout is not", "[build][polycube]")
 {
   // As a closed genus-0 surface (a chain of 6) its fillets and the stem's sides fall inside
   // patches: 5 of 42 patches uncertified and 2.5% of the diagonal off at the defaults (44 s).
   // On its polycube's 4 boxes the layout follows them and the volume is valid at the first
-  // grid. One grid, no untangling, relaxation or stretch: the genus layout fails at once.
+  // grid. Its faces' alignment with three axes (0.96) has the polycube map tried first. One
+  // grid, no untangling, relaxation or stretch: the genus layout fails at once.
   const Mesh m = load(data("t_block_filleted.off"));
   const auto quick = PI::parameters::maximum_grid_resolution(16).minimum_grid_resolution(16).minimum_spline_degree(3).belt_phases(1)
                        .node_relocation_retry(0).untangle_volume(false).grid_relaxation_sweeps(0).stretch_rounds(0).missing_part_cubes(0);
-  const auto model = PI::build_trivariate_model(m, quick);
-  CHECK(model.polycube_retried);
-  CHECK(model.layout.layout_class == PI::Layout_class::polycube);
-  CHECK(model.layout.cuboids.size() == 4);
-  check_valid_volume(model, 0.1, 0.01);
-  REQUIRE(!model.warnings.empty());
-  CHECK(model.warnings.front().find("laid out on a polycube map (4 boxes)") == 0);
-  const auto without = PI::build_trivariate_model(m, quick.polycube_retry(false));
+  const auto alignment = PI::Cuboid_decomposition<Mesh>::polycube_alignment(m);
+  CHECK(alignment.first > 0.95);
+  CHECK(alignment.first < 0.97);
+  CHECK(!alignment.second);
+  const auto first = PI::build_trivariate_model(m, quick);
+  CHECK(first.polycube_first);
+  CHECK(!first.polycube_retried);
+  CHECK(first.layout.layout_class == PI::Layout_class::polycube);
+  CHECK(first.layout.cuboids.size() == 4);
+  check_valid_volume(first, 0.1, 0.01);
+  REQUIRE(!first.warnings.empty());
+  CHECK(first.warnings.front().find("laid out on a polycube map (4 boxes) first") == 0);
+  // Not first: the genus layout, invalid, then the retry.
+  const auto retried = PI::build_trivariate_model(m, quick.polycube_first_alignment(2.));
+  CHECK(!retried.polycube_first);
+  CHECK(retried.polycube_retried);
+  CHECK(retried.layout.layout_class == PI::Layout_class::polycube);
+  CHECK(retried.layout.cuboids.size() == 4);
+  check_valid_volume(retried, 0.1, 0.01);
+  REQUIRE(!retried.warnings.empty());
+  CHECK(retried.warnings.front().find("laid out on a polycube map (4 boxes): the") == 0);
+  const auto without = PI::build_trivariate_model(m, quick.polycube_first_alignment(2.).polycube_retry(false));
+  CHECK(!without.polycube_first);
   CHECK(!without.polycube_retried);
   CHECK(without.layout.layout_class != PI::Layout_class::polycube);
   CHECK(!without.is_valid());
+}
+
+TEST_CASE("build falls back on the genus layout when the polycube map tried first makes none, and says why", "[build][polycube]")
+{
+  // eight.off (alignment 0.85) tried first on a polycube map on request: its labels turn faces
+  // over, so the map is refused and the pants layout follows, named in the first warning.
+  const Mesh m = load(data("eight.off"));
+  CHECK(PI::Cuboid_decomposition<Mesh>::polycube_alignment(m).first < 0.9);
+  const auto quick = PI::parameters::maximum_grid_resolution(16).minimum_grid_resolution(16).minimum_spline_degree(3)
+                       .node_relocation_retry(0).untangle_volume(false).grid_relaxation_sweeps(0).stretch_rounds(0).missing_part_cubes(0);
+  const auto model = PI::build_trivariate_model(m, quick.polycube_first_alignment(0.));
+  CHECK(model.polycube_first);
+  CHECK(!model.polycube_retried); // not tried twice
+  CHECK(model.layout.layout_class == PI::Layout_class::pants);
+  REQUIRE(!model.warnings.empty());
+  CHECK(model.warnings.front().find("a layout on a polycube map was tried first and failed: no_polycube_map") == 0);
+  CHECK(model.warnings.front().find("faces turned over or flat") != std::string::npos);
+  // At the default alignment it is not tried: an organic shape goes by its genus.
+  const auto plain = PI::build_trivariate_model(m, quick);
+  CHECK(!plain.polycube_first);
+  CHECK(plain.layout.layout_class == PI::Layout_class::pants);
+  CHECK_THROWS_AS(PI::build_trivariate_model(m, quick.polycube_first_alignment(std::nan(""))), PI::Invalid_input_error);
 }
 
 TEST_CASE("build CLI lays a closed surface out on a polycube map with --polycube", "[build][cli][polycube]")
@@ -838,6 +877,11 @@ TEST_CASE("build CLI lays a closed surface out on a polycube map with --polycube
   const std::string text = slurp(report);
   CHECK(text.find("\"layout_class\":\"polycube\"") != std::string::npos);
   CHECK(text.find("\"cuboids\":4,") != std::string::npos);
+  CHECK(text.find("\"polycube_first\":false") != std::string::npos);
+  // Without --polycube, its faces' alignment has it tried first all the same.
+  const Cli_result d = run_cli("build '" + mesh + "' -o '" + xml + "' --report '" + report + "' --quiet");
+  CHECK(d.exit_code == 0);
+  CHECK(slurp(report).find("\"polycube_first\":true") != std::string::npos);
   // On a surface with a boundary it names the problem and writes nothing.
   const std::string open = write_text("open_plate.off", voxel_plate_with(1, 1));
   const std::string none = temp_path("open_plate.xml");

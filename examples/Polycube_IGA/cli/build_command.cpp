@@ -119,6 +119,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("nodes_relocated", model.node_relocation.nodes_moved)
       .member("relocation_retried", model.relocation_retried)
       .member("polycube_retried", model.polycube_retried)
+      .member("polycube_first", model.polycube_first)
       .member("relaxation_sweeps", V.relaxation.sweeps)
       .member("relaxation_last_move", V.relaxation.last_move)
       .member("valid", reasons.empty())
@@ -233,7 +234,7 @@ int run_build(const Arguments& args)
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
                       "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--min-degree", "--relax-sweeps", "--stretch-rounds",
                       "--sharp-boundary-turn", "--belt-phases", "--relax-arcs", "--relocate-nodes", "--relocation-retry", "--cut-pair-trials", "--missing-part-cubes",
-                      "--small-handle-length", "--untangling-budget"});
+                      "--small-handle-length", "--untangling-budget", "--polycube-first-alignment"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
   if(out.empty()) throw PI::Invalid_input_error("bad_arguments", "build needs -o OUT.xml");
@@ -256,6 +257,7 @@ int run_build(const Arguments& args)
   const int pair_trials = positive_option(a, "--cut-pair-trials", PI::default_cut_pair_trials, 1, 1000);
   const int missing_part_cubes = positive_option(a, "--missing-part-cubes", 2, 0, 16);
   const double small_handle_length = fraction_option(a, "--small-handle-length", 0., 0., 0.5);
+  const double polycube_first = fraction_option(a, "--polycube-first-alignment", 0.95, 0., 2.);
   // In billions of Jacobian samples (Untangling_budget); "inf": no limit.
   const double untangling_budget =
     a.get("--untangling-budget", "") == "inf"
@@ -286,7 +288,7 @@ int run_build(const Arguments& args)
       .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
       .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid).minimum_spline_degree(min_degree)
       .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn).belt_phases(belt_phases)
-      .step_retry(!a.has("--no-step-retry")).sphere_chain(!a.has("--no-chain")).orthogonal_blocks(!a.has("--no-blocks")).polycube_map(a.has("--polycube")).polycube_retry(!a.has("--no-polycube-retry")).arc_relaxation_sweeps(arc_sweeps).node_relocation_sweeps(node_sweeps).node_relocation_retry(retry_sweeps).cut_pair_trials(pair_trials)
+      .step_retry(!a.has("--no-step-retry")).sphere_chain(!a.has("--no-chain")).orthogonal_blocks(!a.has("--no-blocks")).polycube_map(a.has("--polycube")).polycube_retry(!a.has("--no-polycube-retry")).polycube_first_alignment(polycube_first).arc_relaxation_sweeps(arc_sweeps).node_relocation_sweeps(node_sweeps).node_relocation_retry(retry_sweeps).cut_pair_trials(pair_trials)
       .missing_part_cubes(missing_part_cubes).balance_pants_corners(a.has("--balance-corners")).untangling_budget(untangling_budget)
       // An invalid volume is not written without --allow-invalid: no time spent improving it.
       .untangle_invalid_result(a.has("--allow-invalid")),
@@ -359,7 +361,8 @@ Register_command build_command("build", {
   "                          [--report R.json] [--grid N] [--degree P] [--criterion length|minima|symmetry]\n"
   "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--max-grid M]\n"
   "                          [--min-grid M] [--min-degree D] [--relax-sweeps S] [--stretch-rounds R]\n"
-  "                          [--sharp-boundary-turn D] [--no-chain] [--no-blocks] [--polycube] [--no-polycube-retry] [--belt-phases K] [--no-step-retry] [--relax-arcs K]\n"
+  "                          [--sharp-boundary-turn D] [--no-chain] [--no-blocks] [--polycube] [--no-polycube-retry]\n"
+  "                          [--polycube-first-alignment A] [--belt-phases K] [--no-step-retry] [--relax-arcs K]\n"
   "                          [--relocate-nodes K] [--relocation-retry K] [--cut-pair-trials K]\n"
   "                          [--missing-part-cubes K] [--small-handle-length F] [--no-untangle]\n"
   "                          [--untangling-budget G] [--balance-corners] [--allow-invalid]\n"
@@ -403,6 +406,11 @@ Register_command build_command("build", {
   "  --no-polycube-retry  a closed surface whose layout by its genus gives no valid volume is\n"
   "                    by default built again on a polycube map's boxes, kept if valid; this\n"
   "                    never does\n"
+  "  --polycube-first-alignment A  a closed surface other than a CAD block whose faces align\n"
+  "                    with three axes at least this much (area-weighted, 1 for a CAD block:\n"
+  "                    a part with fillets or round holes is over 0.95, an organic shape 0.83\n"
+  "                    to 0.92) is laid out on its polycube map first, the layout by its genus\n"
+  "                    following only if that volume is not valid (default 0.95; above 1: never)\n"
   "  --belt-phases K   a closed genus-0 surface (one cube) whose volume is not valid is built\n"
   "                    again with the cube's six belt nodes moved along the belt by 1/8, ...,\n"
   "                    (K-1)/8 of the zigzag's period; the first valid one is written\n"

@@ -537,6 +537,11 @@ public:
     return out;
   }
 
+  /// How nearly `tm` is an orthogonal polyhedron (internal::polycube_alignment()): the
+  /// area-weighted alignment of its normals with its polycube frame's axes, and whether every
+  /// face is within 2 degrees of one.
+  static std::pair<double, bool> polycube_alignment(const TriangleMesh& tm) { return internal::polycube_alignment(copy_of(tm)); }
+
 private:
   /// The classes with Euler characteristic >= 0, which have no pants (item 3 of the issue).
   static Layout layout_of(const TriangleMesh& tm, const Surface_topology_result<TriangleMesh>& topo, double belt_phase,
@@ -903,8 +908,9 @@ private:
     const Eigen::Matrix3d frame = polycube_frame(m, normal, area);
     std::vector<int> label = polycube_labels(m, frame, normal, area);
     split_edges_between_borders(m, label);
-    const std::optional<std::vector<Eigen::Vector3d>> position = polycube_positions(m, frame, label);
-    if(!position) return fail("the surface deformed to its labels is not a polycube (a face turned over or flat, or the surface through itself)");
+    std::string not_polycube;
+    const std::optional<std::vector<Eigen::Vector3d>> position = polycube_positions(m, frame, label, 0.05, &not_polycube);
+    if(!position) return fail("the surface deformed to its labels is not a polycube: " + not_polycube);
     auto original = m.template add_property_map<V, Point>("v:original_point").first;
     for(V v : vertices(m)) {
       original[v] = m.point(v);

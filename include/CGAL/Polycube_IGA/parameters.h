@@ -72,6 +72,7 @@ namespace Polycube_IGA {
   X(node_relocation_retry_t, node_relocation_retry)                               \
   X(missing_part_cubes_t, missing_part_cubes)                                     \
   X(polycube_retry_t, polycube_retry)                                             \
+  X(polycube_first_alignment_t, polycube_first_alignment)                         \
   X(untangling_budget_t, untangling_budget)
 
 namespace internal_np {

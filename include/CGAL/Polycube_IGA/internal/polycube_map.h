@@ -36,6 +36,7 @@
 #include <map>
 #include <numeric>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace CGAL {
@@ -154,6 +155,21 @@ Eigen::Matrix3d polycube_frame(const Mesh& m, const std::vector<Eigen::Vector3d>
   for(std::size_t c = 1; c < candidates.size(); ++c)
     if(frame_alignment(candidates[c], normal, area) > frame_alignment(candidates[best], normal, area) + 0.02) best = c;
   return candidates[best];
+}
+
+/// How nearly `m` is an orthogonal polyhedron: the frame_alignment() of its polycube_frame()
+/// (over 0.95 for a CAD part with fillets or round holes, about 0.83 to 0.9 for an organic
+/// shape), and whether every face's normal is within `angle_degrees` of one of the frame's
+/// axes (a CAD block, which orthogonal_blocks() splits as it is).
+template <class Mesh>
+std::pair<double, bool> polycube_alignment(const Mesh& m, double angle_degrees = 2.)
+{
+  const auto [normal, area] = face_normals_and_areas(m);
+  const Eigen::Matrix3d frame = polycube_frame(m, normal, area);
+  const double along = std::cos(angle_degrees * 3.14159265358979323846 / 180.);
+  bool aligned = true;
+  for(const Eigen::Vector3d& n : normal) aligned = aligned && (n.squaredNorm() == 0. || (frame * n).cwiseAbs().maxCoeff() >= along);
+  return {frame_alignment(frame, normal, area), aligned};
 }
 
 /// The charts of a labelling: connected sets of faces of one label across edges. Returns
@@ -431,21 +447,29 @@ bool unfold_polycube(const CGAL::Surface_mesh<P>& m, const std::vector<int>& lab
 /// after unfold_polycube(), which may move `q`: no face turned, the surface not through
 /// itself.
 template <class P>
-bool is_polycube(const CGAL::Surface_mesh<P>& m, const std::vector<int>& label, std::vector<Eigen::Vector3d>& q)
+bool is_polycube(const CGAL::Surface_mesh<P>& m, const std::vector<int>& label, std::vector<Eigen::Vector3d>& q,
+                 std::string* why = nullptr)
 {
-  if(!unfold_polycube(m, label, q)) return false;
+  if(!unfold_polycube(m, label, q)) {
+    if(why) *why = std::to_string(turned_faces(m, label, q).size()) + " of its faces turned over or flat";
+    return false;
+  }
   CGAL::Surface_mesh<P> deformed = m;
   for(auto v : vertices(deformed)) deformed.point(v) = P(q[std::size_t(v)].x(), q[std::size_t(v)].y(), q[std::size_t(v)].z());
-  return !CGAL::Polygon_mesh_processing::does_self_intersect(deformed);
+  if(!CGAL::Polygon_mesh_processing::does_self_intersect(deformed)) return true;
+  if(why) *why = "it passes through itself";
+  return false;
 }
 
 /// The polycube positions (world coordinates, by vertex) of `m` with labels `label` in
 /// `frame`: polycube_axis() for each axis, then again with the charts that face one way
 /// within `snap` of the polycube's extent along their axis on one plane, if that is still a
-/// polycube. Empty when neither is (is_polycube()).
+/// polycube. Empty when neither is (is_polycube(), whose reason for the unsnapped one goes
+/// to `why`).
 template <class P>
 std::optional<std::vector<Eigen::Vector3d>> polycube_positions(const CGAL::Surface_mesh<P>& m, const Eigen::Matrix3d& frame,
-                                                               const std::vector<int>& label, double snap = 0.05)
+                                                               const std::vector<int>& label, double snap = 0.05,
+                                                               std::string* why = nullptr)
 {
   const std::size_t nv = num_vertices(m);
   std::vector<Eigen::Vector3d> x0(nv);
@@ -498,7 +522,7 @@ std::optional<std::vector<Eigen::Vector3d>> polycube_positions(const CGAL::Surfa
   if(!snapped[0].empty() && !snapped[1].empty() && !snapped[2].empty()) q = positions(snapped);
   if(q.empty() || !is_polycube(m, label, q)) {
     q = positions(free);
-    if(!is_polycube(m, label, q)) return std::nullopt;
+    if(!is_polycube(m, label, q, why)) return std::nullopt;
   }
   for(auto& p : q) p = frame.transpose() * p;
   return q;
