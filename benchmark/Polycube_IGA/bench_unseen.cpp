@@ -9,7 +9,8 @@
 //   - CAD blocks that are not boxes, made here as unions of unit cubes (an L, a T, a U, a
 //     staircase; meshes::union_of_cubes(), 6 x 6 squares per cube face): the simplest CAD
 //     parts after a box, which `build` lays out on its sharp edges;
-//   - the test meshes remeshed: PMP::isotropic_remeshing to about `target_faces` faces,
+//   - the test meshes remeshed (among them two CAD parts with fillets and round holes, which
+//     go to their polycube maps first): PMP::isotropic_remeshing to about `target_faces` faces,
 //     with the edges whose faces meet at over 50 degrees, the border edges, and the
 //     vertices where such edges do not pass straight through kept as constraints, so the
 //     shape is the same and every triangle (hence every map, cut and arc) new.
@@ -68,6 +69,7 @@ const Unseen_case cases[] = {
   {"test:ring5.off", 5000, true},            {"test:chain5.off", 5000, true},
   {"test:plate5.off", 5000, true},           {"test:chain6.off", 5000, true},
   {"test:plate6.off", 5000, true},           {"cgal/rotor.off", 5000, false},
+  {"test:t_block_filleted.off", 5000, true}, {"test:plate_two_round_holes.off", 5000, true},
   {"cgal/cylinder.off", 0, true},            {"cgal/pinion.off", 0, true},
   {"cgal/fandisk.off", 0, false},            {"cgal/anchor_dense.off", 0, false},
   {"cgal/armadillo.off", 0, false},          {"population/femur/S002_Femur.ply", 0, true},

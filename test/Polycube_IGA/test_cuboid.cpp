@@ -544,7 +544,7 @@ bool sharp_edges_on_arcs(const Layout& L)
   const std::vector<bool> sharp = PI::internal::sharp_edges(L.mesh, 45.);
   std::vector<bool> on_arc(num_edges(L.mesh), false);
   for(const auto& arc : L.arcs)
-    for(std::size_t i = 0; i + 1 < arc.vertices.size(); ++i)
+    for(std::size_t i = 0; !arc.inside && i + 1 < arc.vertices.size(); ++i)
       on_arc[std::size_t(edge(halfedge(arc.vertices[i], arc.vertices[i + 1], L.mesh).first, L.mesh))] = true;
   for(std::size_t e = 0; e < sharp.size(); ++e)
     if(sharp[e] && !on_arc[e]) return false;
@@ -584,6 +584,36 @@ TEST_CASE("a CAD block is split into the boxes between its faces' planes: an L, 
     CHECK(P.cuboids.size() == std::size_t(3 * (2 * genus + 1) - genus));
     CHECK(sharp_edges_on_arcs(P));
   }
+  // A 4 by 4 plate without two opposite corner cells: the planes x = 1 and y = 3 (and x = 3,
+  // y = 1) meet inside it, so two box edges run through the solid from its bottom to its top,
+  // each an arc inside, bounding four interfaces and no surface patch (validate()). 7 boxes.
+  const Mesh notched = load(write_text("notched.off", voxel_plate_off(4, 4, {{0, 0}, {3, 3}}, {})));
+  const Layout N = decompose(notched);
+  CHECK(N.layout_class == PI::Layout_class::blocks);
+  check_layout(notched, N);
+  CHECK(N.cuboids.size() == 7);
+  CHECK(sharp_edges_on_arcs(N));
+  std::vector<std::size_t> inside;
+  for(std::size_t a = 0; a < N.arcs.size(); ++a)
+    if(N.arcs[a].inside) inside.push_back(a);
+  REQUIRE(inside.size() == 2);
+  for(std::size_t a : inside) {
+    CHECK(N.arcs[a].vertices.size() == 2);
+    const Point& p = N.mesh.point(N.arcs[a].vertices.front());
+    const Point& q = N.mesh.point(N.arcs[a].vertices.back());
+    CHECK(p.x() == q.x());
+    CHECK(p.y() == q.y());
+    CHECK(std::abs(p.z() - q.z()) == 1.); // bottom to top
+    CHECK(((p.x() == 1. && p.y() == 3.) || (p.x() == 3. && p.y() == 1.)));
+    int interfaces = 0;
+    for(const auto& pa : N.patches)
+      for(std::size_t b : pa.arcs)
+        if(b == a) {
+          CHECK(pa.kind == Layout::INTERFACE);
+          ++interfaces;
+        }
+    CHECK(interfaces == 4);
+  }
   // square_ring.off, a box with a square hole (gmsh's triangles): a ring of 8 boxes.
   const Mesh r = load(data("square_ring.off"));
   const Layout R = decompose(r);
@@ -594,14 +624,9 @@ TEST_CASE("a CAD block is split into the boxes between its faces' planes: an L, 
   CHECK(sharp_edges_on_arcs(R));
 }
 
-TEST_CASE("a CAD block whose boxes would need an edge inside the solid, and a box, are not split into blocks", "[cuboid][blocks]")
+TEST_CASE("a box is laid out on its own edges, not split into blocks", "[cuboid][blocks]")
 {
-  // A 4 by 4 plate without two opposite corner cells: the planes x = 1 and y = 3 meet inside
-  // it, where no node can be. A box is laid out on its own edges (feature_cube()).
-  const Mesh notched = load(write_text("notched.off", voxel_plate_off(4, 4, {{0, 0}, {3, 3}}, {})));
-  const Layout N = decompose(notched);
-  CHECK(N.layout_class == PI::Layout_class::sphere);
-  check_layout(notched, N);
+  // One box is no split (feature_cube()).
   const Layout B = decompose(load(data("cube-meshed.off")));
   CHECK(B.layout_class == PI::Layout_class::sphere);
   CHECK(B.cuboids.size() == 1);
@@ -647,7 +672,7 @@ TEST_CASE("a polycube map lays CAD parts with round holes and fillets out on its
   CHECK(S.cuboids.size() == 1);
 }
 
-TEST_CASE("a polycube map is refused with a reason: a surface with a boundary, labels that make no polycube, a box edge inside", "[cuboid][polycube]")
+TEST_CASE("a polycube map is refused with a reason: a surface with a boundary, labels that make no polycube, a box corner inside", "[cuboid][polycube]")
 {
   const auto polycube = PI::parameters::polycube_map(true);
   const Mesh open = load(write_text("plate_open.off", voxel_plate_with(1, 1)));
@@ -665,13 +690,13 @@ TEST_CASE("a polycube map is refused with a reason: a surface with a boundary, l
     CHECK(e.reason() == "no_polycube_map");
   }
   // joint.off: its polycube is a box under a smaller one whose hole's planes cut the larger
-  // one, so a box edge would run inside the solid, where the layout holds no node or arc.
+  // one, so box corners would lie inside the solid, where no node can be (a mesh vertex).
   try {
     PI::Cuboid_decomposition<Mesh>()(load(data("joint.off")), polycube);
     FAIL("joint.off was laid out on a polycube map");
   } catch(const PI::Internal_error& e) {
     CHECK(e.reason() == "no_polycube_map");
-    CHECK(std::string(e.what()).find("a box edge would run inside the solid") != std::string::npos);
+    CHECK(std::string(e.what()).find("a box corner would lie inside the solid") != std::string::npos);
   }
 }
 

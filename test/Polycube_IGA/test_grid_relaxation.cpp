@@ -280,3 +280,34 @@ TEST_CASE("a walk to the closest point stays on its side of a thin wall", "[grid
   CHECK(walk.point.y() == Approx(0.5));
   CHECK(probe.closest_point(target).normal.z() < -0.99); // the whole tree's answer: the bottom
 }
+
+TEST_CASE("grid relaxation keeps a CAD block's arcs inside the solid straight between their moved nodes", "[grid_relaxation][blocks]")
+{
+  // A 4 by 4 plate without two opposite corner cells: two box edges run through it from its
+  // bottom to its top (Polycube_layout::Arc::inside). The relaxation may move their nodes
+  // within the flat faces; the segments must follow, or the interfaces along them would not
+  // meet the surface patches' corners.
+  const Layout L = PI::Cuboid_decomposition<Mesh>()(load(write_text("notched.off", voxel_plate_off(4, 4, {{0, 0}, {3, 3}}, {}))));
+  REQUIRE(L.layout_class == PI::Layout_class::blocks);
+  const int N = 8;
+  const PI::Patch_grids before = PI::sample_layout_patches(L, PI::parameters::grid_resolution(N));
+  PI::Patch_grids after = before;
+  PI::relax_surface_grids(L, after, PI::Grid_relaxation_options());
+  CHECK(borders_are_arc_samples(L, after));
+  int inside = 0;
+  for(std::size_t a = 0; a < L.arcs.size(); ++a) {
+    if(!L.arcs[a].inside) continue;
+    ++inside;
+    const auto& s = after.arc_samples[a];
+    // Its ends where every other arc at its nodes now starts or ends.
+    for(std::size_t b = 0; b < L.arcs.size(); ++b)
+      for(int e = 0; e < 2; ++e)
+        for(int f = 0; f < 2; ++f)
+          if(b != a && L.arcs[b].nodes[std::size_t(e)] == L.arcs[a].nodes[std::size_t(f)])
+            CHECK((f == 0 ? s.front() : s.back()) == (e == 0 ? after.arc_samples[b].front() : after.arc_samples[b].back()));
+    // Straight, evenly sampled.
+    for(int k = 0; k <= N; ++k)
+      CHECK((s[std::size_t(k)] - (s.front() + (double(k) / N) * (s.back() - s.front()))).norm() < 1e-12);
+  }
+  CHECK(inside == 2);
+}

@@ -309,6 +309,7 @@ struct Layout_builder
   std::vector<std::size_t> node_vertex;                  ///< final-mesh vertex of each node
   std::vector<std::array<std::size_t, 2>> arc_nodes;
   std::vector<std::vector<std::size_t>> arc_path;        ///< final-mesh vertices
+  std::vector<bool> arc_inside;                          ///< Polycube_layout::Arc::inside
   std::vector<Interior_quad> interior;
   std::vector<std::array<std::size_t, 8>> cuboids;
   std::vector<int> cuboid_pants;
@@ -322,11 +323,12 @@ struct Layout_builder
     node_vertex.push_back(v);
     return node_vertex.size() - 1;
   }
-  void arc(const std::vector<std::size_t>& path)
+  void arc(const std::vector<std::size_t>& path, bool inside = false)
   {
     if(path.size() < 2) layout_failure("an arc has fewer than two vertices");
     arc_nodes.push_back({{node(path.front()), node(path.back())}});
     arc_path.push_back(path);
+    arc_inside.push_back(inside);
   }
   /// Splits a closed loop of final-mesh vertices into arcs at the vertices that are nodes.
   void loop_arcs(const std::vector<std::size_t>& loop)
@@ -374,6 +376,7 @@ Polycube_layout<P> finish_layout(Piece_mesh<P>&& mesh, Layout_builder& b, Layout
     typename Polycube_layout<P>::Arc arc;
     arc.nodes = b.arc_nodes[a];
     for(std::size_t v : b.arc_path[a]) arc.vertices.push_back(V(std::uint32_t(v)));
+    arc.inside = a < b.arc_inside.size() && b.arc_inside[a];
     L.arcs.push_back(std::move(arc));
   }
   assemble_layout(L, b.interior, b.cuboids, b.cuboid_pants);
@@ -620,7 +623,7 @@ private:
     if(auto fp = m.template property_map<typename Mesh::Face_index, std::size_t>("f:parent"); fp.second) m.remove_property_map(fp.first);
     std::vector<bool> cut(num_edges(m), false);
     for(const auto& a : L.arcs)
-      for(std::size_t i = 0; i + 1 < a.vertices.size(); ++i) cut[edge(halfedge(a.vertices[i], a.vertices[i + 1], m).first, m)] = true;
+      for(std::size_t i = 0; !a.inside && i + 1 < a.vertices.size(); ++i) cut[edge(halfedge(a.vertices[i], a.vertices[i + 1], m).first, m)] = true;
     // Surface patches come first, numbered by their smallest face as the pieces are.
     std::vector<Mesh> pieces = cut_into_pieces(m, cut);
     std::size_t surface = 0;
@@ -661,7 +664,7 @@ private:
     if(cubes.empty()) return L;
     Layout_builder bld;
     for(V n : L.nodes) bld.node(std::size_t(n));
-    for(const auto& a : L.arcs) bld.arc(as_indices(a.vertices));
+    for(const auto& a : L.arcs) bld.arc(as_indices(a.vertices), a.inside);
     for(const auto& p : L.patches)
       if(p.kind != Layout::SURFACE) bld.interior.push_back({int(p.kind), p.corners});
     for(const auto& c : L.cuboids) {
@@ -778,11 +781,13 @@ private:
   /// axes (internal/orthogonal_grid.h: an L, a T, a U, a bracket, a frame), split into the
   /// boxes between the planes of its faces: the grid planes are inserted into the mesh (the
   /// surface does not move), the boxes' corners are the nodes, the grid lines on the surface
-  /// the arcs (every sharp edge among them), the boxes the cuboids and the faces they share
-  /// the interfaces. Any other layout would cross the sharp edges, which no smooth face
-  /// follows (an L-block as a chain of cuboids: 2.4% of the diagonal off at a corner inside
-  /// a cap). Empty for a box (feature_cube()), when a grid edge would run inside the solid,
-  /// or when the boxes do not make a valid layout; `why` then says which, unless the mesh
+  /// the arcs (every sharp edge among them; a box edge through the solid, such as a
+  /// staircase's inner corner line, is an arc `inside`, a straight segment), the boxes the
+  /// cuboids and the faces they share the interfaces. Any other layout would cross the sharp
+  /// edges, which no smooth face follows (an L-block as a chain of cuboids: 2.4% of the
+  /// diagonal off at a corner inside a cap). Empty for a box (feature_cube()), when a box
+  /// corner would lie inside the solid (no mesh vertex can be its node), or when the boxes
+  /// do not make a valid layout; `why` then says which, unless the mesh
   /// is not an orthogonal polyhedron at all.
   ///
   /// With `layout_class` polycube, `m` is a polycube map of a surface whose points are the
@@ -820,6 +825,9 @@ private:
         std::array<int, 3> b = a;
         ++b[k];
         node_at(a), node_at(b);
+        // A box edge inside the solid (its four boxes all there) is the straight segment
+        // between its ends, which orthogonal_grid() has checked are on the surface.
+        if(G.edge_inside(a, k)) return std::vector<std::size_t>{vertex_at.at(a), vertex_at.at(b)};
         const double end = G.planes[k][std::size_t(b[k])];
         std::vector<std::size_t> path{vertex_at.at(a)};
         while(path.back() != vertex_at.at(b)) {
@@ -871,7 +879,7 @@ private:
               bld.interior.push_back(q);
             }
           }
-      for(const auto& line : lines) bld.arc(line_path(line.first, line.second));
+      for(const auto& line : lines) bld.arc(line_path(line.first, line.second), G.edge_inside(line.first, line.second));
       auto original = m.template property_map<V, Point>("v:original_point");
       if(original.second) {
         for(V v : vertices(m)) m.point(v) = original.first[v];

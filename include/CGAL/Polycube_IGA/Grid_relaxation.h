@@ -224,8 +224,13 @@ Grid_relaxation_result relax_surface_grids(const Polycube_layout<Point_3>& L, Pa
       for(int i = 0; i <= N; ++i) g(i, j) = x[std::size_t(Q.grid_point(L, p, i, j))];
   }
   for(std::size_t a = 0; a < L.arcs.size(); ++a) {
-    if(!Q.arc_used(a)) continue;
     auto& s = G.arc_samples[a];
+    if(L.arcs[a].inside) { // a straight segment between its (relaxed) nodes
+      for(int k = 0; k <= N; ++k)
+        s[std::size_t(k)] = (1. - double(k) / N) * x[L.arcs[a].nodes[0]] + (double(k) / N) * x[L.arcs[a].nodes[1]];
+      continue;
+    }
+    if(!Q.arc_used(a)) continue;
     s.front() = x[L.arcs[a].nodes[0]];
     s.back() = x[L.arcs[a].nodes[1]];
     for(int k = 1; k < N; ++k) s[std::size_t(k)] = x[std::size_t(Q.arc_point(a, k))];

@@ -187,7 +187,10 @@ Chained_layout<Point_3> split_long_cuboids(const Polycube_layout<Point_3>& layou
   // Long arcs of split cuboids (to be resampled) are found per cuboid below; every other arc
   // is copied when first needed.
   auto copied_arc = [&](std::size_t a) {
-    if(new_arc[a] == none) new_arc[a] = add_arc(layout.arcs[a].nodes[0], layout.arcs[a].nodes[1], samples.arc_samples[a]);
+    if(new_arc[a] == none) {
+      new_arc[a] = add_arc(layout.arcs[a].nodes[0], layout.arcs[a].nodes[1], samples.arc_samples[a]);
+      L.arcs[new_arc[a]].inside = layout.arcs[a].inside; // stays straight between its nodes
+    }
     return new_arc[a];
   };
   auto copied_patch = [&](std::size_t p) {

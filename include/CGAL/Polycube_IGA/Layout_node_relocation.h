@@ -679,7 +679,12 @@ template <class Point_3>
 Node_relocation_result relocate_layout_nodes(Polycube_layout<Point_3>& L, int sweeps = 2)
 {
   Node_relocation_result result;
+  // A node at the end of an arc inside the solid stays: the segment is a box edge.
+  std::vector<bool> fixed(L.nodes.size(), false);
+  for(const auto& a : L.arcs)
+    if(a.inside) fixed[a.nodes[0]] = fixed[a.nodes[1]] = true;
   std::tie(result.nodes_moved, result.sweeps) = internal::sweep_layout(L, sweeps, L.nodes.size(), "node relocation", [&](std::size_t n) {
+    if(fixed[n]) return false;
     return is_border(L.nodes[n], L.mesh) ? internal::relocate_border_node(L, n, result) : internal::relocate_node(L, n, result);
   });
   return result;

@@ -631,7 +631,8 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
     const std::size_t n0 = layout.arcs[a].nodes[0], n1 = layout.arcs[a].nodes[1];
     typename Layout::Patch wall;
     // Between two surface patches the wall lies inside; beside a cap it continues the cap.
-    wall.kind = surface_sides[a] >= 2 ? Layout::INTERFACE : Layout::CAP;
+    // An arc inside the solid has no slab beside it, and its wall no cuboid.
+    wall.kind = surface_sides[a] >= 2 || layout.arcs[a].inside ? Layout::INTERFACE : Layout::CAP;
     wall.corners = {{n0, n1, nn + n1, nn + n0}};
     wall.arcs = {{a, 2 * na + n1, na + a, 2 * na + n0}};
     L.patches.push_back(wall);

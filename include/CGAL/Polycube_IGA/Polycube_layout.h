@@ -6,9 +6,10 @@
 // vertices, arcs are vertex paths between two nodes, quad patches are either face sets of the
 // surface bounded by four arcs or interior quads (caps on input boundary loops, interfaces
 // between cuboids) that only have their four arcs, and cuboids list their 8 nodes and 6
-// patches. Every arc lies on the surface in all layouts the package builds, so every interior
-// quad is spanned by a loop of surface arcs. validate() checks the properties the later
-// stages rely on.
+// patches. Every arc lies on the surface, except the box edges of a CAD block (or a polycube)
+// that run through the solid between two surface nodes: those are straight segments
+// (Arc::inside) bounding interfaces only. validate() checks the properties the later stages
+// rely on.
 
 #ifndef CGAL_POLYCUBE_IGA_POLYCUBE_LAYOUT_H
 #define CGAL_POLYCUBE_IGA_POLYCUBE_LAYOUT_H
@@ -81,6 +82,10 @@ struct Polycube_layout
   {
     std::array<std::size_t, 2> nodes{{0, 0}};
     std::vector<vertex_descriptor> vertices; ///< from nodes[0]'s vertex to nodes[1]'s
+    /// A straight segment through the solid between two surface nodes (`vertices` is just
+    /// their two vertices), bounding INTERFACE patches only: a box edge of a CAD block inside
+    /// it, such as a staircase's inner corner line.
+    bool inside = false;
   };
 
   struct Patch
@@ -207,6 +212,10 @@ Layout_validation Polycube_layout<Point_3>::validate() const
       problem(name + " does not start and end at its nodes");
     ++valence[arc.nodes[0]];
     ++valence[arc.nodes[1]];
+    if(arc.inside) {
+      if(arc.vertices.size() != 2) problem(name + " runs inside the solid but is not one segment");
+      continue;
+    }
     for(std::size_t i = 0; i + 1 < arc.vertices.size(); ++i) {
       auto h = halfedge(arc.vertices[i], arc.vertices[i + 1], mesh);
       if(!h.second) {
@@ -244,9 +253,14 @@ Layout_validation Polycube_layout<Point_3>::validate() const
     }
     if(pa.kind != SURFACE) {
       if(!pa.faces.empty()) problem(name + " is interior but has faces");
+      if(pa.kind == CAP)
+        for(std::size_t a : pa.arcs)
+          if(a < arcs.size() && arcs[a].inside) problem(name + " is a cap bounded by an arc inside the solid");
       continue;
     }
     ++surface_patches;
+    for(std::size_t a : pa.arcs)
+      if(a < arcs.size() && arcs[a].inside) problem(name + " is on the surface but bounded by an arc inside the solid");
     if(pa.faces.empty()) {
       problem(name + " has no faces");
       continue;
@@ -352,7 +366,9 @@ Layout_validation Polycube_layout<Point_3>::validate() const
       problem("patch " + std::to_string(p) + " is used by " + std::to_string(uses[p]) + " cuboids (" + std::to_string(want) + " expected)");
   }
 
-  r.euler_surface = int(nodes.size()) - int(arcs.size()) + int(surface_patches);
+  // The surface's own graph: the arcs inside the solid are edges of the cuboid complex only.
+  const long inside_arcs = std::count_if(arcs.begin(), arcs.end(), [](const Arc& a) { return a.inside; });
+  r.euler_surface = int(nodes.size()) - int(arcs.size() - std::size_t(inside_arcs)) + int(surface_patches);
   r.euler_solid = int(nodes.size()) - int(arcs.size()) + int(patches.size()) - int(cuboids.size());
   const int chi_surface = 2 - 2 * genus - int(boundary_loops);
   if(r.euler_surface != chi_surface)

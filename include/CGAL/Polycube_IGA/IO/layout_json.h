@@ -177,7 +177,7 @@ inline void write_indented_json(std::ostream& os, const std::string& s)
 /// `genus`, `boundary_loops`, `pants`, `turned_outwards` (the input's faces pointed inwards);
 /// `nodes` [{`vertex`, `input_vertex` (from the mesh's
 /// "v:input_index" property, -1 without it or for a refinement vertex), `point` [x,y,z]}];
-/// `arcs` [{`nodes` [a,b], `vertices` [...], `length`}]; `patches` [{`kind` ("surface",
+/// `arcs` [{`nodes` [a,b], `vertices` [...], `inside`, `length`}]; `patches` [{`kind` ("surface",
 /// "cap" or "interface"), `corners` [4], `arcs` [4], `faces` (count), `area` (of the faces,
 /// 0 for cap and interface patches)}]; `cuboids` [{`nodes` [8], `patches` [6], `pants`}];
 /// `interfaces` [{`patch`, `cuboids` [a,b], `sides` [sa,sb]}]; `validation` {`valid`,
@@ -221,6 +221,7 @@ void write_layout_json(std::ostream& os, const Polycube_layout<P>& L, bool prett
     w.key("vertices").begin_array();
     for(auto v : arc.vertices) w.value(Ull(std::size_t(v)));
     w.end_array();
+    w.member("inside", arc.inside); // a straight segment through the solid, not a mesh path
     w.member("length", Polycube_IGA::internal::layout_arc_length(L, arc));
     w.end_object();
   }

@@ -70,7 +70,7 @@ void assemble_layout(Polycube_layout<P>& L, const std::vector<Interior_quad>& in
   std::map<std::pair<std::size_t, std::size_t>, int> arc_of_pair; // -2 when ambiguous
   for(std::size_t a = 0; a < L.arcs.size(); ++a) {
     const auto& path = L.arcs[a].vertices;
-    for(std::size_t i = 0; i + 1 < path.size(); ++i) {
+    for(std::size_t i = 0; !L.arcs[a].inside && i + 1 < path.size(); ++i) {
       const auto h = halfedge(path[i], path[i + 1], m);
       if(!h.second) fail("arc " + std::to_string(a) + " is not an edge path");
       arc_of_edge[std::size_t(edge(h.first, m))] = int(a);

@@ -57,6 +57,25 @@ struct Orthogonal_grid
       if(c[k] < 0 || c[k] >= n[k]) return false;
     return inside[std::size_t(c[0] + n[0] * (c[1] + n[1] * c[2]))];
   }
+  /// Whether the box edge from grid point `a` one step along axis k runs inside the solid:
+  /// the four cells around it are all in it.
+  bool edge_inside(const std::array<int, 3>& a, std::size_t k) const
+  {
+    const std::size_t b = (k + 1) % 3, d = (k + 2) % 3;
+    for(int s = 0; s < 4; ++s) {
+      std::array<int, 3> c = a;
+      c[b] -= s & 1, c[d] -= s >> 1;
+      if(!is_inside(c)) return false;
+    }
+    return true;
+  }
+  /// Whether grid point `a` lies inside the solid: the eight cells around it are all in it.
+  bool point_inside(const std::array<int, 3>& a) const
+  {
+    for(int s = 0; s < 8; ++s)
+      if(!is_inside({a[0] - (s & 1), a[1] - ((s >> 1) & 1), a[2] - (s >> 2)})) return false;
+    return true;
+  }
   /// The coordinate of `p` along axis k.
   template <class Point>
   double coordinate(const Point& p, std::size_t k) const
@@ -85,7 +104,7 @@ std::pair<std::vector<Eigen::Vector3d>, std::vector<double>> face_normals_and_ar
 }
 
 /// The grid of `m` when it is an orthogonal polyhedron (every face's normal within
-/// `angle_degrees` of an axis, every face on one of its axis's planes) whose box edges all
+/// `angle_degrees` of an axis, every face on one of its axis's planes) whose box corners all
 /// lie on the surface, with at most `maximum_cells` boxes; empty otherwise, and then, for an
 /// orthogonal polyhedron, `why` says what is wrong with its boxes.
 template <class Mesh>
@@ -159,29 +178,18 @@ std::optional<Orthogonal_grid> orthogonal_grid(const Mesh& m, double angle_degre
       }
   if(count == 0) return refuse("no grid cell is inside it");
   if(count > maximum_cells) return refuse(std::to_string(count) + " boxes, over " + std::to_string(maximum_cells));
-  // Every edge of a box on the surface: not all four cells around it inside.
-  for(std::size_t k = 0; k < 3; ++k) {
-    const std::size_t b = (k + 1) % 3, d = (k + 2) % 3;
-    for(int l = 0; l < n[int(k)]; ++l)
-      for(int j = 0; j <= n[int(b)]; ++j)
-        for(int i = 0; i <= n[int(d)]; ++i) {
-          int around = 0;
-          for(int s = 0; s < 4; ++s) {
-            std::array<int, 3> c{};
-            c[k] = l, c[b] = j - (s & 1), c[d] = i - (s >> 1);
-            around += g.is_inside(c) ? 1 : 0;
-          }
-          if(around == 4) {
-            Eigen::Vector3d u;
-            u[Eigen::Index(k)] = 0.5 * (g.planes[k][std::size_t(l)] + g.planes[k][std::size_t(l) + 1]);
-            u[Eigen::Index(b)] = g.planes[b][std::size_t(j)];
-            u[Eigen::Index(d)] = g.planes[d][std::size_t(i)];
-            const Eigen::Vector3d x = g.frame.transpose() * u;
-            return refuse("a box edge would run inside the solid, through (" + std::to_string(x.x()) + ", " + std::to_string(x.y()) +
-                          ", " + std::to_string(x.z()) + ")");
-          }
+  // Every box corner on the surface: not all eight cells around it inside. A box edge may
+  // run inside the solid between two corners on the surface (a staircase's inner corner
+  // line); a corner inside would need a node that no mesh vertex can be.
+  for(int l = 0; l <= n[2]; ++l)
+    for(int j = 0; j <= n[1]; ++j)
+      for(int i = 0; i <= n[0]; ++i)
+        if(g.point_inside({i, j, l})) {
+          const Eigen::Vector3d x =
+            g.frame.transpose() * Eigen::Vector3d(g.planes[0][std::size_t(i)], g.planes[1][std::size_t(j)], g.planes[2][std::size_t(l)]);
+          return refuse("a box corner would lie inside the solid, at (" + std::to_string(x.x()) + ", " + std::to_string(x.y()) + ", " +
+                        std::to_string(x.z()) + ")");
         }
-  }
   return g;
 }
 
