@@ -262,6 +262,17 @@ inline void append_stage_seconds(std::vector<std::pair<std::string, double>>& to
   for(const auto& x : from) to.push_back({x.first + suffix, x.second});
 }
 
+/// Puts the stage seconds of an earlier attempt, `earlier`, before those of `to`, each of
+/// its names followed by `suffix`.
+inline void prepend_stage_seconds(std::vector<std::pair<std::string, double>>& to,
+                                  const std::vector<std::pair<std::string, double>>& earlier, const std::string& suffix)
+{
+  std::vector<std::pair<std::string, double>> seconds;
+  append_stage_seconds(seconds, earlier, suffix);
+  seconds.insert(seconds.end(), to.begin(), to.end());
+  to = std::move(seconds);
+}
+
 /// build_trivariate_model() on the layout `variant`, untangling an invalid result at the end
 /// if `untangle_invalid`, unless the layout is a sphere's and `other_phases_follow` (other
 /// belt phases may give a valid one; a chain's is not deferred): then `*untangling_deferred` says whether that
@@ -962,18 +973,14 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
                                                           internal::short_number(first_alignment));
         return finished(*first);
       }
-      polycube_tried = std::move(first);
-      if(polycube_failure.empty() && !polycube_tried) polycube_failure = "no layout";
+      polycube_tried = std::move(first); // empty only when it threw: polycube_failure says why
     }
   }
   auto model = internal::build_with_class_variants(tm, np, progress, budget);
   if(polycube_tried || !polycube_failure.empty()) {
     model.polycube_first = true;
     if(polycube_tried) {
-      std::vector<std::pair<std::string, double>> seconds;
-      internal::append_stage_seconds(seconds, polycube_tried->stage_seconds, ", polycube map first");
-      seconds.insert(seconds.end(), model.stage_seconds.begin(), model.stage_seconds.end());
-      model.stage_seconds = std::move(seconds);
+      internal::prepend_stage_seconds(model.stage_seconds, polycube_tried->stage_seconds, ", polycube map first");
       model.warnings.insert(model.warnings.begin(), "a layout on a polycube map (" + std::to_string(polycube_tried->layout.cuboids.size()) +
                                                       " boxes) was tried first and gave no valid volume (" +
                                                       internal::comma_list(polycube_tried->invalidity_reasons()) + ")");
@@ -995,10 +1002,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
       other->warnings.insert(other->warnings.begin(), "laid out on a polycube map (" + std::to_string(other->layout.cuboids.size()) +
                                                         " boxes): the " + layout_class_name(model.layout.layout_class) +
                                                         " layout's volume was not valid (" + internal::comma_list(model.invalidity_reasons()) + ")");
-      std::vector<std::pair<std::string, double>> seconds;
-      internal::append_stage_seconds(seconds, model.stage_seconds, std::string(", ") + layout_class_name(model.layout.layout_class));
-      seconds.insert(seconds.end(), other->stage_seconds.begin(), other->stage_seconds.end());
-      other->stage_seconds = std::move(seconds);
+      internal::prepend_stage_seconds(other->stage_seconds, model.stage_seconds, std::string(", ") + layout_class_name(model.layout.layout_class));
       return finished(*other);
     }
     if(other) {
@@ -1034,10 +1038,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
                                                       std::to_string(other->node_relocation.nodes_moved) +
                                                       " moves): on the decomposition's own nodes the volume was not valid (" +
                                                       internal::comma_list(model.invalidity_reasons()) + ")");
-    std::vector<std::pair<std::string, double>> seconds;
-    internal::append_stage_seconds(seconds, model.stage_seconds, ", own nodes");
-    seconds.insert(seconds.end(), other->stage_seconds.begin(), other->stage_seconds.end());
-    other->stage_seconds = std::move(seconds);
+    internal::prepend_stage_seconds(other->stage_seconds, model.stage_seconds, ", own nodes");
     return finished(*other);
   }
   internal::append_stage_seconds(model.stage_seconds, other->stage_seconds, ", nodes relocated");

@@ -225,9 +225,9 @@ Grid_relaxation_result relax_surface_grids(const Polycube_layout<Point_3>& L, Pa
   }
   for(std::size_t a = 0; a < L.arcs.size(); ++a) {
     auto& s = G.arc_samples[a];
-    if(L.arcs[a].inside) { // a straight segment between its (relaxed) nodes
-      for(int k = 0; k <= N; ++k)
-        s[std::size_t(k)] = (1. - double(k) / N) * x[L.arcs[a].nodes[0]] + (double(k) / N) * x[L.arcs[a].nodes[1]];
+    if(L.arcs[a].inside) { // a straight segment between its (relaxed) nodes, sampled as at first
+      const std::vector<Eigen::Vector3d> ends{x[L.arcs[a].nodes[0]], x[L.arcs[a].nodes[1]]};
+      s = internal::sample_polyline(ends, internal::cumulative_lengths(ends), N);
       continue;
     }
     if(!Q.arc_used(a)) continue;
