@@ -672,6 +672,57 @@ TEST_CASE("a polycube map lays CAD parts with round holes and fillets out on its
   CHECK(S.cuboids.size() == 1);
 }
 
+TEST_CASE("a polycube map survives remeshing: the same boxes on remeshed CAD parts", "[cuboid][polycube]")
+{
+  // Isotropic remeshing leaves triangles whose corners all lie on a chart's reflex border
+  // (a fillet's or a hole's corner): solved, their middle vertices landed outside the chart
+  // and faces turned over (12 on the T, 1 on the plate) until the untangling moved such
+  // vertices into their stars' kernels. The boxes are those of the CAD meshes.
+  const auto polycube = PI::parameters::polycube_map(true);
+  const Mesh t = load(data("t_block_filleted_remeshed.off"));
+  const Layout T = PI::Cuboid_decomposition<Mesh>()(t, polycube);
+  CHECK(T.layout_class == PI::Layout_class::polycube);
+  check_layout(t, T);
+  CHECK(T.cuboids.size() == 4);
+  CHECK(T.interfaces().size() == 3);
+  const Mesh p = load(data("plate_two_round_holes_remeshed.off"));
+  const Layout P = PI::Cuboid_decomposition<Mesh>()(p, polycube);
+  CHECK(P.layout_class == PI::Layout_class::polycube);
+  CHECK(P.genus == 2);
+  check_layout(p, P);
+  CHECK(P.cuboids.size() == 13);
+  CHECK(P.interfaces().size() == 14);
+}
+
+TEST_CASE("untangling a polycube moves a vertex off a chart's reflex corner into its star's kernel, and nothing else", "[cuboid][polycube]")
+{
+  // A chart facing +z with a reflex corner b at the origin (the chart is the plane z = 0
+  // but the notch x, y > 0). Vertex c's neighbours a, b, d and e: a and d on the corner's
+  // legs, so c must lie in the kernel x < 0, y < 0 (and 2x - y + 1 > 0, 2y - x + 1 > 0); it
+  // sits in the notch, where averaging puts it, and two of its faces are turned over.
+  Mesh m;
+  const auto c = m.add_vertex(Point(0.2, 0.2, 0.)), a = m.add_vertex(Point(1., 0., 0.)), b = m.add_vertex(Point(0., 0., 0.)),
+             d = m.add_vertex(Point(0., 1., 0.)), e = m.add_vertex(Point(-1., -1., 0.));
+  m.add_face(c, a, b);
+  m.add_face(c, b, d);
+  m.add_face(c, d, e);
+  m.add_face(c, e, a);
+  const std::vector<int> label(num_faces(m), 4); // +z
+  std::vector<Eigen::Vector3d> q;
+  for(auto v : vertices(m)) q.push_back(Eigen::Vector3d(m.point(v).x(), m.point(v).y(), m.point(v).z()));
+  CHECK(PI::internal::turned_faces(m, label, q).size() == 2);
+  const std::vector<Eigen::Vector3d> q0 = q;
+  CHECK(PI::internal::untangle_polycube(m, label, q));
+  CHECK(PI::internal::turned_faces(m, label, q).empty());
+  for(auto v : {a, b, d, e}) CHECK(q[std::size_t(v)] == q0[std::size_t(v)]); // only c moves
+  const Eigen::Vector3d& x = q[std::size_t(c)];
+  CHECK(x.z() == 0.); // in its chart's plane
+  CHECK(x.x() < 0.);
+  CHECK(x.y() < 0.);
+  CHECK(2. * x.x() - x.y() + 1. > 0.);
+  CHECK(2. * x.y() - x.x() + 1. > 0.);
+}
+
 TEST_CASE("a polycube map is refused with a reason: a surface with a boundary, labels that make no polycube, a box corner inside", "[cuboid][polycube]")
 {
   const auto polycube = PI::parameters::polycube_map(true);

@@ -443,14 +443,155 @@ bool unfold_polycube(const CGAL::Surface_mesh<P>& m, const std::vector<int>& lab
   return turned_faces(m, label, q).empty();
 }
 
+/// The heights of vertex `v` of `m` over the opposite sides of its faces, as functions of its
+/// free coordinates (bit k of `fixed`: axis k is a chart's, not free): one row (c, d) per
+/// face, height c . x + d > 0 when the face faces its label's way, x its free coordinates
+/// in axis order (one or two). Rows whose face `v` cannot turn (c = 0) are left out.
+template <class P>
+std::vector<std::pair<Eigen::Vector2d, double>> star_heights(const CGAL::Surface_mesh<P>& m, const std::vector<int>& label,
+                                                            const std::vector<Eigen::Vector3d>& q,
+                                                            typename CGAL::Surface_mesh<P>::Vertex_index v, int fixed)
+{
+  std::vector<std::pair<Eigen::Vector2d, double>> rows;
+  for(auto h : halfedges_around_target(halfedge(v, m), m)) {
+    const auto f = face(h, m);
+    if(f == CGAL::Surface_mesh<P>::null_face()) continue;
+    // (a - v) x (b - v) = a x b + v x (a - b), v a b the face's corners in order.
+    const Eigen::Vector3d& a = q[std::size_t(target(next(h, m), m))];
+    const Eigen::Vector3d& b = q[std::size_t(source(h, m))];
+    const int l = label[std::size_t(f)], k = l / 2, k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+    const double s = l % 2 ? -1. : 1.;
+    const Eigen::Vector3d w = a - b;
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    c[k1] = s * w[k2], c[k2] = -s * w[k1];
+    double d = s * a.cross(b)[k];
+    Eigen::Vector2d free = Eigen::Vector2d::Zero();
+    int n = 0;
+    for(int i = 0; i < 3; ++i) {
+      if(fixed & (1 << i)) d += c[i] * q[std::size_t(v)][i];
+      else if(n < 2) free[n++] = c[i];
+    }
+    const double norm = free.norm();
+    if(norm > 0.) rows.push_back({free / norm, d / norm});
+  }
+  return rows;
+}
+
+/// Moves each free coordinate of the vertices near the faces that `q` turns over to the
+/// point deepest inside its star's kernel (the Chebyshev centre of the half-planes of
+/// star_heights(), bounded by its neighbours' box), when that is deeper than where it is:
+/// a vertex whose neighbours all lie on a chart's reflex border (the middle of an edge that
+/// cut a fillet's corner) is then set inside the corner, where averaging puts it on the
+/// border. A move never turns more faces of its star over. Returns whether no face is turned.
+template <class P>
+bool untangle_polycube(const CGAL::Surface_mesh<P>& m, const std::vector<int>& label, std::vector<Eigen::Vector3d>& q, int sweeps = 50)
+{
+  using V = typename CGAL::Surface_mesh<P>::Vertex_index;
+  std::vector<int> fixed(num_vertices(m), 0);
+  for(auto f : faces(m))
+    for(auto v : vertices_around_face(halfedge(f, m), m)) fixed[std::size_t(v)] |= 1 << (label[std::size_t(f)] / 2);
+  for(int sweep = 0; sweep < sweeps; ++sweep) {
+    const auto turned = turned_faces(m, label, q);
+    if(turned.empty()) return true;
+    // Ring 0: the corners of turned faces, moved only while their stars are turned. Every
+    // ten sweeps one more ring round them is centred too, to make room.
+    std::vector<int> ring_of(num_vertices(m), -1);
+    std::vector<V> ring;
+    for(auto f : turned)
+      for(auto v : vertices_around_face(halfedge(f, m), m))
+        if(ring_of[std::size_t(v)] < 0) ring_of[std::size_t(v)] = 0, ring.push_back(v);
+    for(int r = 1; r <= sweep / 10; ++r) {
+      std::vector<V> next_ring;
+      for(V v : ring)
+        for(V w : vertices_around_target(halfedge(v, m), m))
+          if(ring_of[std::size_t(w)] < 0) ring_of[std::size_t(w)] = r, next_ring.push_back(w);
+      ring = std::move(next_ring);
+    }
+    bool moved = false;
+    for(V v : vertices(m)) {
+      const int fx = fixed[std::size_t(v)];
+      if(ring_of[std::size_t(v)] < 0 || fx == 7) continue;
+      std::vector<int> axis;
+      for(int i = 0; i < 3; ++i)
+        if(!(fx & (1 << i))) axis.push_back(i);
+      const int dim = int(axis.size());
+      Eigen::Vector2d x = Eigen::Vector2d::Zero();
+      for(int i = 0; i < dim; ++i) x[i] = q[std::size_t(v)][axis[std::size_t(i)]];
+      auto rows = star_heights(m, label, q, v, fx);
+      if(rows.empty()) continue;
+      double now = std::numeric_limits<double>::infinity();
+      for(const auto& r : rows) now = std::min(now, r.first.dot(x) + r.second);
+      const std::size_t faces = rows.size();
+      // The neighbours' box keeps an unbounded kernel (a convex corner) from sending it off.
+      Eigen::Vector2d lo = x, hi = x;
+      for(V w : vertices_around_target(halfedge(v, m), m))
+        for(int i = 0; i < dim; ++i)
+          lo[i] = std::min(lo[i], q[std::size_t(w)][axis[std::size_t(i)]]), hi[i] = std::max(hi[i], q[std::size_t(w)][axis[std::size_t(i)]]);
+      if(ring_of[std::size_t(v)] == 0 && now > 1e-9 * (hi - lo).norm()) continue; // its star is not turned (any more)
+      for(int i = 0; i < dim; ++i) {
+        Eigen::Vector2d e = Eigen::Vector2d::Zero();
+        e[i] = 1.;
+        rows.push_back({e, -lo[i]}), rows.push_back({-e, hi[i]});
+      }
+      // The centre is a vertex of the (dim + 1)-dimensional problem max t, c . x + d >= t:
+      // dim + 1 rows active.
+      double best = now;
+      Eigen::Vector2d best_x = x;
+      const std::size_t n = rows.size();
+      auto consider = [&](const Eigen::Vector2d& y, double t) {
+        if(!(t > best) || !y.allFinite()) return;
+        for(const auto& r : rows)
+          if(r.first.dot(y) + r.second < t - 1e-12 * (1. + std::abs(t))) return;
+        best = t, best_x = y;
+      };
+      if(dim == 1) {
+        for(std::size_t i = 0; i < n; ++i)
+          for(std::size_t j = i + 1; j < n; ++j) {
+            const double a = rows[i].first[0], b = rows[j].first[0];
+            if(std::abs(a - b) < 1e-12) continue;
+            const double y = (rows[j].second - rows[i].second) / (a - b);
+            consider(Eigen::Vector2d(y, 0.), a * y + rows[i].second);
+          }
+      } else {
+        for(std::size_t i = 0; i < n; ++i)
+          for(std::size_t j = i + 1; j < n; ++j)
+            for(std::size_t k = j + 1; k < n; ++k) {
+              Eigen::Matrix3d A;
+              Eigen::Vector3d rhs;
+              std::size_t row = 0;
+              for(std::size_t r : {i, j, k}) {
+                A.row(row) << rows[r].first.x(), rows[r].first.y(), -1.;
+                rhs[row++] = -rows[r].second;
+              }
+              const Eigen::FullPivLU<Eigen::Matrix3d> lu(A);
+              if(!lu.isInvertible()) continue;
+              const Eigen::Vector3d y = lu.solve(rhs);
+              consider(y.head<2>(), y[2]);
+            }
+      }
+      // A star that no point untangles may still get deeper, if no more of its faces turn.
+      auto turned_in_star = [&](const Eigen::Vector2d& y) {
+        return std::count_if(rows.begin(), rows.begin() + std::ptrdiff_t(faces), [&](const auto& r) { return !(r.first.dot(y) + r.second > 0.); });
+      };
+      if(best > now && best_x != x && (best > 0. || turned_in_star(best_x) <= turned_in_star(x))) {
+        for(int i = 0; i < dim; ++i) q[std::size_t(v)][axis[std::size_t(i)]] = best_x[i];
+        moved = true;
+      }
+    }
+    if(!moved) break;
+  }
+  return turned_faces(m, label, q).empty();
+}
+
 /// Whether `q` (positions in the frame, by vertex) makes `m` a polycube for its labels
-/// after unfold_polycube(), which may move `q`: no face turned, the surface not through
+/// after untangle_polycube() (or, if that leaves faces turned, unfold_polycube() and
+/// untangle_polycube() again), which may move `q`: no face turned, the surface not through
 /// itself.
 template <class P>
 bool is_polycube(const CGAL::Surface_mesh<P>& m, const std::vector<int>& label, std::vector<Eigen::Vector3d>& q,
                  std::string* why = nullptr)
 {
-  if(!unfold_polycube(m, label, q)) {
+  if(!untangle_polycube(m, label, q) && !(unfold_polycube(m, label, q) || untangle_polycube(m, label, q))) {
     if(why) *why = std::to_string(turned_faces(m, label, q).size()) + " of its faces turned over or flat";
     return false;
   }
