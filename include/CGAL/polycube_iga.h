@@ -330,6 +330,8 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
   if(stretch_rounds < 0) throw Invalid_input_error("invalid_parameter", "stretch_rounds must not be negative");
   const int arc_sweeps = int(option(np, internal_np::arc_relaxation_sweeps, 0));
   if(arc_sweeps < 0) throw Invalid_input_error("invalid_parameter", "arc_relaxation_sweeps must not be negative");
+  const int polycube_arc_sweeps = int(option(np, internal_np::polycube_arc_relaxation_sweeps, 3));
+  if(polycube_arc_sweeps < 0) throw Invalid_input_error("invalid_parameter", "polycube_arc_relaxation_sweeps must not be negative");
   const int asked_node_sweeps = int(option(np, internal_np::node_relocation_sweeps, 0));
   if(asked_node_sweeps < 0) throw Invalid_input_error("invalid_parameter", "node_relocation_sweeps must not be negative");
   const int node_sweeps = variant.node_relocation_sweeps >= 0 ? variant.node_relocation_sweeps : asked_node_sweeps;
@@ -357,8 +359,11 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
     stage("node relocation", [&] { model.node_relocation = relocate_layout_nodes(model.layout, node_sweeps); });
   if(unless_nodes && node_points(model.layout) == *unless_nodes) return std::nullopt;
   if(variant.node_relocation_sweeps > 0 && model.node_relocation.nodes_moved == 0) return std::nullopt;
-  if(arc_sweeps > 0)
-    stage("arc relaxation", [&] { model.arc_relaxation = relax_layout_arcs(model.layout, arc_sweeps); });
+  // A polycube map's arcs follow its charts' borders, which zigzag from triangle to triangle
+  // where a chart meets another on a curved face (a round hole's wall, a fillet).
+  const int layout_arc_sweeps = model.layout.layout_class == Layout_class::polycube ? std::max(arc_sweeps, polycube_arc_sweeps) : arc_sweeps;
+  if(layout_arc_sweeps > 0)
+    stage("arc relaxation", [&] { model.arc_relaxation = relax_layout_arcs(model.layout, layout_arc_sweeps); });
   if(model.layout.turned_outwards)
     model.warnings.push_back("the input's faces point into the solid; the layout and the volume use them turned outwards");
   stage("layout validation", [&] { model.layout_validation = model.layout.validate(); });
@@ -899,6 +904,9 @@ auto build_with_class_variants(const TriangleMesh& tm, const NamedParameters& np
 /// `arc_relaxation_sweeps` (0): sweeps of relax_layout_arcs() on every layout before its
 /// volume is built (Layout_arc_relaxation.h): corners nearer right angles (anchor.off: mean
 /// deviation 42 -> 33 degrees at 3 sweeps), so far without a volume that becomes valid.
+/// `polycube_arc_relaxation_sweeps` (3): the same on a layout of a polycube map, whose arcs
+/// follow its charts' borders and zigzag on curved faces (at least `arc_relaxation_sweeps`);
+/// plate_two_round_holes.off remeshed: the volume on its 13 boxes becomes valid.
 /// `node_relocation_sweeps` (0): sweeps of relocate_layout_nodes() on every layout before its
 /// volume is built, and before the arc relaxation (Layout_node_relocation.h): nodes moved in
 /// the union of their patches, or along their hole's rim, where their corners come nearer

@@ -847,6 +847,31 @@ TEST_CASE("build lays a filleted T out on its polycube map first, or retries it 
   CHECK(!without.is_valid());
 }
 
+TEST_CASE("build relaxes a polycube map's arcs, which zigzag along its charts' borders on a remeshed fillet", "[build][polycube]")
+{
+  // The filleted T remeshed: its charts' borders run across the fillets from triangle to
+  // triangle, and so do the arcs of its 4 boxes. Re-traced as the middles of their patches
+  // (3 sweeps, the default), the volume is valid at the first grid; as traced, 2 patches
+  // are not certified (without the grid relaxation).
+  const Mesh m = load(data("t_block_filleted_remeshed.off"));
+  const auto quick = PI::parameters::maximum_grid_resolution(16).minimum_grid_resolution(16).minimum_spline_degree(3).belt_phases(1)
+                       .node_relocation_retry(0).untangle_volume(false).grid_relaxation_sweeps(0).stretch_rounds(0).missing_part_cubes(0)
+                       .polycube_retry(false);
+  const auto relaxed = PI::build_trivariate_model(m, quick);
+  CHECK(relaxed.polycube_first);
+  CHECK(relaxed.layout.layout_class == PI::Layout_class::polycube);
+  CHECK(relaxed.layout.cuboids.size() == 4);
+  CHECK(relaxed.arc_relaxation.arcs_moved > 0);
+  check_valid_volume(relaxed, 0.01, 0.01);
+  // As traced, the polycube map's volume is not valid, and the genus layout follows.
+  const auto as_traced = PI::build_trivariate_model(m, quick.polycube_arc_relaxation_sweeps(0));
+  CHECK(as_traced.polycube_first);
+  REQUIRE(!as_traced.warnings.empty());
+  CHECK(as_traced.warnings.front().find("a layout on a polycube map (4 boxes) was tried first and gave no valid volume") == 0);
+  CHECK(as_traced.layout.layout_class != PI::Layout_class::polycube);
+  CHECK_THROWS_AS(PI::build_trivariate_model(m, quick.polycube_arc_relaxation_sweeps(-1)), PI::Invalid_input_error);
+}
+
 TEST_CASE("build falls back on the genus layout when the polycube map tried first makes none, and says why", "[build][polycube]")
 {
   // eight.off (alignment 0.85) tried first on a polycube map on request: its labels turn faces

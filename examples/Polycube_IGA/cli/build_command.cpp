@@ -234,7 +234,7 @@ int run_build(const Arguments& args)
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
                       "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--min-degree", "--relax-sweeps", "--stretch-rounds",
                       "--sharp-boundary-turn", "--belt-phases", "--relax-arcs", "--relocate-nodes", "--relocation-retry", "--cut-pair-trials", "--missing-part-cubes",
-                      "--small-handle-length", "--untangling-budget", "--polycube-first-alignment"});
+                      "--small-handle-length", "--untangling-budget", "--polycube-first-alignment", "--polycube-relax-arcs"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
   if(out.empty()) throw PI::Invalid_input_error("bad_arguments", "build needs -o OUT.xml");
@@ -252,6 +252,7 @@ int run_build(const Arguments& args)
   const double sharp_turn = fraction_option(a, "--sharp-boundary-turn", 60., 0., 180.);
   const int belt_phases = positive_option(a, "--belt-phases", 4, 1, 8);
   const int arc_sweeps = positive_option(a, "--relax-arcs", 0, 0, 100);
+  const int polycube_arc_sweeps = positive_option(a, "--polycube-relax-arcs", 3, 0, 100);
   const int node_sweeps = positive_option(a, "--relocate-nodes", 0, 0, 100);
   const int retry_sweeps = positive_option(a, "--relocation-retry", 2, 0, 100);
   const int pair_trials = positive_option(a, "--cut-pair-trials", PI::default_cut_pair_trials, 1, 1000);
@@ -288,7 +289,7 @@ int run_build(const Arguments& args)
       .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
       .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid).minimum_spline_degree(min_degree)
       .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn).belt_phases(belt_phases)
-      .step_retry(!a.has("--no-step-retry")).sphere_chain(!a.has("--no-chain")).orthogonal_blocks(!a.has("--no-blocks")).polycube_map(a.has("--polycube")).polycube_retry(!a.has("--no-polycube-retry")).polycube_first_alignment(polycube_first).arc_relaxation_sweeps(arc_sweeps).node_relocation_sweeps(node_sweeps).node_relocation_retry(retry_sweeps).cut_pair_trials(pair_trials)
+      .step_retry(!a.has("--no-step-retry")).sphere_chain(!a.has("--no-chain")).orthogonal_blocks(!a.has("--no-blocks")).polycube_map(a.has("--polycube")).polycube_retry(!a.has("--no-polycube-retry")).polycube_first_alignment(polycube_first).arc_relaxation_sweeps(arc_sweeps).polycube_arc_relaxation_sweeps(polycube_arc_sweeps).node_relocation_sweeps(node_sweeps).node_relocation_retry(retry_sweeps).cut_pair_trials(pair_trials)
       .missing_part_cubes(missing_part_cubes).balance_pants_corners(a.has("--balance-corners")).untangling_budget(untangling_budget)
       // An invalid volume is not written without --allow-invalid: no time spent improving it.
       .untangle_invalid_result(a.has("--allow-invalid")),
@@ -363,6 +364,7 @@ Register_command build_command("build", {
   "                          [--min-grid M] [--min-degree D] [--relax-sweeps S] [--stretch-rounds R]\n"
   "                          [--sharp-boundary-turn D] [--no-chain] [--no-blocks] [--polycube] [--no-polycube-retry]\n"
   "                          [--polycube-first-alignment A] [--belt-phases K] [--no-step-retry] [--relax-arcs K]\n"
+  "                          [--polycube-relax-arcs K]\n"
   "                          [--relocate-nodes K] [--relocation-retry K] [--cut-pair-trials K]\n"
   "                          [--missing-part-cubes K] [--small-handle-length F] [--no-untangle]\n"
   "                          [--untangling-budget G] [--balance-corners] [--allow-invalid]\n"
@@ -421,6 +423,8 @@ Register_command build_command("build", {
   "  --relax-arcs K    before the volume is built, up to K sweeps re-trace each arc between two\n"
   "                    surface patches as the middle of their union where that brings the\n"
   "                    corners at its ends nearer right angles (default 0: never)\n"
+  "  --polycube-relax-arcs K  the same on a layout of a polycube map, whose arcs follow its\n"
+  "                    charts' borders and zigzag on curved faces (default 3; at least --relax-arcs)\n"
   "  --relocate-nodes K  before the volume is built (and before --relax-arcs), up to K sweeps move\n"
   "                    each node whose corners are over 30 degrees from right angles inside the\n"
   "                    union of its patches, re-tracing its arcs, where that brings the corners\n"

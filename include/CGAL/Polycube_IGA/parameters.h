@@ -73,6 +73,7 @@ namespace Polycube_IGA {
   X(missing_part_cubes_t, missing_part_cubes)                                     \
   X(polycube_retry_t, polycube_retry)                                             \
   X(polycube_first_alignment_t, polycube_first_alignment)                         \
+  X(polycube_arc_relaxation_sweeps_t, polycube_arc_relaxation_sweeps)             \
   X(untangling_budget_t, untangling_budget)
 
 namespace internal_np {
