@@ -490,9 +490,15 @@ bool untangle_polycube(const CGAL::Surface_mesh<P>& m, const std::vector<int>& l
   std::vector<int> fixed(num_vertices(m), 0);
   for(auto f : faces(m))
     for(auto v : vertices_around_face(halfedge(f, m), m)) fixed[std::size_t(v)] |= 1 << (label[std::size_t(f)] / 2);
+  // A labelling that no moves untangle (a smooth shape's) stops after 20 sweeps without
+  // fewer faces turned: its sweeps cost a linear program per vertex near each turned face.
+  std::size_t fewest = std::numeric_limits<std::size_t>::max();
+  int stalled = 0;
   for(int sweep = 0; sweep < sweeps; ++sweep) {
     const auto turned = turned_faces(m, label, q);
     if(turned.empty()) return true;
+    if(turned.size() < fewest) fewest = turned.size(), stalled = 0;
+    else if(++stalled == 20) break;
     // Ring 0: the corners of turned faces, moved only while their stars are turned. Every
     // ten sweeps one more ring round them is centred too, to make room.
     std::vector<int> ring_of(num_vertices(m), -1);
