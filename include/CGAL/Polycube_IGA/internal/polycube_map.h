@@ -405,6 +405,39 @@ std::vector<typename CGAL::Surface_mesh<P>::Face_index> turned_faces(const CGAL:
   return out;
 }
 
+/// By vertex of `m`: bit k set when a face of it has a label on axis k, so that its
+/// coordinate along k is its chart's (fixed); the others are free.
+template <class P>
+std::vector<int> chart_fixed_axes(const CGAL::Surface_mesh<P>& m, const std::vector<int>& label)
+{
+  std::vector<int> fixed(num_vertices(m), 0);
+  for(auto f : faces(m))
+    for(auto v : vertices_around_face(halfedge(f, m), m)) fixed[std::size_t(v)] |= 1 << (label[std::size_t(f)] / 2);
+  return fixed;
+}
+
+/// By vertex of `m`: its ring round the faces `around` (0: a corner of one of them, r: r
+/// edges from the nearest), up to `rings`; -1 beyond.
+template <class P>
+std::vector<int> rings_round_faces(const CGAL::Surface_mesh<P>& m, const std::vector<typename CGAL::Surface_mesh<P>::Face_index>& around,
+                                   int rings)
+{
+  using V = typename CGAL::Surface_mesh<P>::Vertex_index;
+  std::vector<int> ring_of(num_vertices(m), -1);
+  std::vector<V> ring;
+  for(auto f : around)
+    for(auto v : vertices_around_face(halfedge(f, m), m))
+      if(ring_of[std::size_t(v)] < 0) ring_of[std::size_t(v)] = 0, ring.push_back(v);
+  for(int r = 1; r <= rings; ++r) {
+    std::vector<V> next_ring;
+    for(V v : ring)
+      for(V w : vertices_around_target(halfedge(v, m), m))
+        if(ring_of[std::size_t(w)] < 0) ring_of[std::size_t(w)] = r, next_ring.push_back(w);
+    ring = std::move(next_ring);
+  }
+  return ring_of;
+}
+
 /// Smooths the free coordinates (those of the axes that none of its faces' labels is on) of
 /// the vertices near the turned faces of `q` towards the mean of their neighbours', a few
 /// rings at a time, until no face is turned or `sweeps` are done: a reflex corner of a
@@ -414,25 +447,13 @@ template <class P>
 bool unfold_polycube(const CGAL::Surface_mesh<P>& m, const std::vector<int>& label, std::vector<Eigen::Vector3d>& q, int sweeps = 200)
 {
   using V = typename CGAL::Surface_mesh<P>::Vertex_index;
-  std::vector<int> fixed(num_vertices(m), 0); // bit k: the coordinate along axis k is a chart's
-  for(auto f : faces(m))
-    for(auto v : vertices_around_face(halfedge(f, m), m)) fixed[std::size_t(v)] |= 1 << (label[std::size_t(f)] / 2);
+  const std::vector<int> fixed = chart_fixed_axes(m, label);
   for(int sweep = 0; sweep < sweeps; ++sweep) {
     const auto turned = turned_faces(m, label, q);
     if(turned.empty()) return true;
-    std::vector<bool> near(num_vertices(m), false);
-    std::vector<V> ring;
-    for(auto f : turned)
-      for(auto v : vertices_around_face(halfedge(f, m), m)) near[std::size_t(v)] = true, ring.push_back(v);
-    for(int r = 0; r < 2; ++r) {
-      std::vector<V> next;
-      for(V v : ring)
-        for(V w : vertices_around_target(halfedge(v, m), m))
-          if(!near[std::size_t(w)]) near[std::size_t(w)] = true, next.push_back(w);
-      ring = std::move(next);
-    }
+    const std::vector<int> ring_of = rings_round_faces(m, turned, 2);
     for(V v : vertices(m)) {
-      if(!near[std::size_t(v)] || fixed[std::size_t(v)] == 7) continue;
+      if(ring_of[std::size_t(v)] < 0 || fixed[std::size_t(v)] == 7) continue;
       Eigen::Vector3d mean = Eigen::Vector3d::Zero();
       double count = 0.;
       for(V w : vertices_around_target(halfedge(v, m), m)) mean += q[std::size_t(w)], count += 1.;
@@ -487,9 +508,7 @@ template <class P>
 bool untangle_polycube(const CGAL::Surface_mesh<P>& m, const std::vector<int>& label, std::vector<Eigen::Vector3d>& q, int sweeps = 50)
 {
   using V = typename CGAL::Surface_mesh<P>::Vertex_index;
-  std::vector<int> fixed(num_vertices(m), 0);
-  for(auto f : faces(m))
-    for(auto v : vertices_around_face(halfedge(f, m), m)) fixed[std::size_t(v)] |= 1 << (label[std::size_t(f)] / 2);
+  const std::vector<int> fixed = chart_fixed_axes(m, label);
   // A labelling that no moves untangle (a smooth shape's) stops after 20 sweeps without
   // fewer faces turned: its sweeps cost a linear program per vertex near each turned face.
   std::size_t fewest = std::numeric_limits<std::size_t>::max();
@@ -501,18 +520,7 @@ bool untangle_polycube(const CGAL::Surface_mesh<P>& m, const std::vector<int>& l
     else if(++stalled == 20) break;
     // Ring 0: the corners of turned faces, moved only while their stars are turned. Every
     // ten sweeps one more ring round them is centred too, to make room.
-    std::vector<int> ring_of(num_vertices(m), -1);
-    std::vector<V> ring;
-    for(auto f : turned)
-      for(auto v : vertices_around_face(halfedge(f, m), m))
-        if(ring_of[std::size_t(v)] < 0) ring_of[std::size_t(v)] = 0, ring.push_back(v);
-    for(int r = 1; r <= sweep / 10; ++r) {
-      std::vector<V> next_ring;
-      for(V v : ring)
-        for(V w : vertices_around_target(halfedge(v, m), m))
-          if(ring_of[std::size_t(w)] < 0) ring_of[std::size_t(w)] = r, next_ring.push_back(w);
-      ring = std::move(next_ring);
-    }
+    const std::vector<int> ring_of = rings_round_faces(m, turned, sweep / 10);
     bool moved = false;
     for(V v : vertices(m)) {
       const int fx = fixed[std::size_t(v)];
