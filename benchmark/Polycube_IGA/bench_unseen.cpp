@@ -13,7 +13,12 @@
 //     go to their polycube maps first): PMP::isotropic_remeshing to about `target_faces` faces,
 //     with the edges whose faces meet at over 50 degrees, the border edges, and the
 //     vertices where such edges do not pass straight through kept as constraints, so the
-//     shape is the same and every triangle (hence every map, cut and arc) new.
+//     shape is the same and every triangle (hence every map, cut and arc) new;
+//   - a second corpus of new shapes, benchmark/Polycube_IGA/data (README there): 8 CAD
+//     parts (a flange with bolt holes, an L bracket, a mug, a solid tee, a bent thick pipe,
+//     a box with three holes, a cube with crossing holes, a stepped shaft) and 6 smooth
+//     shapes (a limbed blob, a pretzel, three tori, a twisted torus, a banana, a plate with
+//     four holes), genus 0 to 5, as they are.
 // A remeshed surface is validated as `build` validates a file (a remeshing that makes
 // faces intersect gives an input row, not a build). Per case: class, genus, valid (every
 // patch's det J certified positive and the boundary within 2% of the diagonal), patches
@@ -48,7 +53,7 @@ using meshes::Mesh;
 
 struct Unseen_case
 {
-  const char* file;      ///< relative to the shared data directory, "test:" + test data name, or "block:" + blocks[] name
+  const char* file;      ///< relative to the shared data directory, "test:" + test data name, "bench:" + benchmark data name, or "block:" + blocks[] name
   std::size_t faces;     ///< remeshed to about this many faces; 0: as it is
   bool quick;            ///< part of --quick
 };
@@ -76,6 +81,13 @@ const Unseen_case cases[] = {
   {"population/femur/S010_Femur.ply", 0, true},
   {"block:L", 0, true},                      {"block:T", 0, true},
   {"block:U", 0, true},                      {"block:staircase", 0, true},
+  {"bench:cad_flange_5holes.off", 0, false}, {"bench:cad_L_bracket_2holes.off", 0, true},
+  {"bench:cad_mug_torus_handle.off", 0, true}, {"bench:cad_tee_solid.off", 0, false},
+  {"bench:cad_elbow_tube.off", 0, false},    {"bench:cad_box_3holes.off", 0, false},
+  {"bench:cad_cube_cross_holes.off", 0, false}, {"bench:cad_stepped_shaft.off", 0, true},
+  {"bench:org_blobby_4limbs.off", 0, true},  {"bench:org_pretzel_genus2.off", 0, true},
+  {"bench:org_triple_torus_genus3.off", 0, true}, {"bench:org_twisted_torus.off", 0, true},
+  {"bench:org_banana.off", 0, true},         {"bench:org_plate_4holes.off", 0, true},
 };
 
 /// The CAD blocks, as unit cubes (x, y, z): each a plate extruded from an orthogonal polygon.
@@ -160,8 +172,10 @@ Outcome run_case(const Options& opt, const Unseen_case& c)
 {
   Outcome o;
   const std::string file = c.file;
-  const bool in_tests = file.rfind("test:", 0) == 0, block = file.rfind("block:", 0) == 0;
-  const std::string path = in_tests ? std::string(POLYCUBE_IGA_TEST_DATA_DIR) + "/" + file.substr(5) : opt.data_dir + "/" + file;
+  const bool in_tests = file.rfind("test:", 0) == 0, in_bench = file.rfind("bench:", 0) == 0, block = file.rfind("block:", 0) == 0;
+  const std::string path = in_tests   ? std::string(POLYCUBE_IGA_TEST_DATA_DIR) + "/" + file.substr(5)
+                           : in_bench ? std::string(POLYCUBE_IGA_BENCH_DATA_DIR) + "/" + file.substr(6)
+                                      : opt.data_dir + "/" + file;
   o.name = block ? file.substr(6) + " block" : meshes::base_name(path) + (c.faces ? " ~" + std::to_string(c.faces) : std::string());
   Mesh read, mesh;
   if(block) {
