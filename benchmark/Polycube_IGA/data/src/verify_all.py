@@ -1,4 +1,4 @@
-import os, sys, glob, os, numpy as np
+import os, sys, glob, numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from common import *
 for p in sorted(glob.glob(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '*.off'))):
