@@ -992,7 +992,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   // valid at once. Organic shapes (alignment 0.83 to 0.92) never try it first.
   const double first_alignment = option(np, internal_np::polycube_first_alignment, 0.95);
   if(!(first_alignment >= 0.)) throw Invalid_input_error("invalid_parameter", "polycube_first_alignment must not be negative or NaN");
-  std::optional<Model> polycube_tried; // tried first, not valid
+  std::optional<Model> polycube_attempt; // the polycube map's volume, tried first or retried, not valid
   std::string polycube_failure;
   if(closed && !polycube_given && first_alignment <= 1.) {
     const auto [alignment, axis_aligned] = Cuboid_decomposition<TriangleMesh>::polycube_alignment(tm);
@@ -1006,7 +1006,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
                                                           internal::short_number(first_alignment));
         return finished(*first);
       }
-      polycube_tried = std::move(first); // empty only when it threw: polycube_failure says why
+      polycube_attempt = std::move(first); // empty only when it threw: polycube_failure says why
     }
   }
   auto model = internal::build_with_class_variants(tm, np, progress, budget);
@@ -1015,7 +1015,6 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   // crossing round holes: its pants layout left 13 of 76 patches uncertified and 2.35% off,
   // its polycube map's boxes 2 of 112, 1.61%), with the whole run's record and its own
   // diagnostics, which name its own patches.
-  std::optional<Model> polycube_attempt;
   auto nearest_attempt = [&](Model* relocated) {
     Model* kept = &model;
     const std::string genus_layout = "the " + std::string(layout_class_name(model.layout.layout_class)) + " layout";
@@ -1035,11 +1034,10 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
                                                       internal::volume_shortfall(model.volume));
     return finished(*kept);
   };
-  if(polycube_tried || !polycube_failure.empty()) {
+  if(polycube_attempt || !polycube_failure.empty()) {
     model.polycube_first = true;
-    if(polycube_tried) {
-      internal::prepend_stage_seconds(model.stage_seconds, polycube_tried->stage_seconds, ", polycube map first");
-      polycube_attempt = std::move(polycube_tried);
+    if(polycube_attempt) {
+      internal::prepend_stage_seconds(model.stage_seconds, polycube_attempt->stage_seconds, ", polycube map first");
       model.warnings.insert(model.warnings.begin(), "a layout on a polycube map (" + std::to_string(polycube_attempt->layout.cuboids.size()) +
                                                       " boxes) was tried first and gave no valid volume (" +
                                                       internal::comma_list(polycube_attempt->invalidity_reasons()) + ")");

@@ -65,12 +65,17 @@ struct Volume_untangling_options
   /// than maximum_control_points, nothing is done (`skipped`). Cost grows with the control
   /// points and the rounds: at the default grid (4 spans, 343 points per patch) about 3 s
   /// for eight.off's 31 patches, 5.5 s for 3holes.obj's 52, 86 s for blade.off's 105. The
-  /// point guard is 256 such patches, so at the default grid the patch guard binds first; at
-  /// twice the samples (8 spans, 1331 points per patch) it admits 66 patches. At 128 it
-  /// admitted 33 and kept a CAD square ring (a box with a square hole, 40 patches) invalid;
-  /// untangled at 32 samples it is valid, in 28 s.
-  std::size_t maximum_patches = 128;
-  std::size_t maximum_control_points = 256 * 343;
+  /// point guard is 1024 such patches, so at the default grid both bind together; at twice
+  /// the samples (8 spans, 1331 points per patch) it admits 264. The run's time is
+  /// bounded by build_trivariate_model()'s untangling_budget, so these only keep a run
+  /// from starting on a volume far beyond it. At 128 patches and 256 * 343 points, the
+  /// genus-5 flange of the unseen corpus (220 patches to optimise) was not untangled and
+  /// its pants layout left 66 of 167 patches uncertified; untangled, 8 (2 with its nodes
+  /// relocated), with no more memory (343 MB at the peak either way), in 479 s instead of
+  /// 122. At 128 * 343 points a CAD square ring (40 patches) stayed invalid; untangled at
+  /// 32 samples it is valid.
+  std::size_t maximum_patches = 1024;
+  std::size_t maximum_control_points = 1024 * 343;
   /// Epsilon updates per sample density. With minimum_decrease 0.5, every test mesh whose
   /// samples turn positive does so within 22 rounds (blade.off: 17, 21 and 22 at 3, 4 and
   /// 5 points per span); rotor.off, which never does, crawls from -5 to -1.4 in 60.
