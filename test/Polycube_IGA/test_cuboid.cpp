@@ -751,6 +751,43 @@ TEST_CASE("a polycube map is refused with a reason: a surface with a boundary, l
   }
 }
 
+TEST_CASE("a polycube frame across round sides follows the shape's extent, across flat sides the sides", "[cuboid][polycube]")
+{
+  // A body of revolution's side facets make no direction hold more area than another (a
+  // mug's body: 3% of its side in the peak), so the second axis goes where the surface
+  // extends furthest across the first (its handle); flat sides keep theirs whatever the
+  // spread. Normals: the two ends along z, then 97 side facets at uneven angles.
+  const double pi = 3.14159265358979323846;
+  std::vector<Eigen::Vector3d> normal{Eigen::Vector3d::UnitZ(), -Eigen::Vector3d::UnitZ()};
+  std::vector<double> area{50., 50.};
+  for(int i = 0; i < 97; ++i) {
+    const double t = 2. * pi * (i + 0.3 * std::sin(7. * i)) / 97.;
+    normal.emplace_back(std::cos(t), std::sin(t), 0.), area.push_back(1.);
+  }
+  const double handle = 30. * pi / 180.; // the spread's long axis across z
+  const Eigen::Vector3d d(std::cos(handle), std::sin(handle), 0.);
+  const Eigen::Matrix3d spread = 4. * d * d.transpose() + Eigen::Matrix3d::Identity();
+  const std::optional<Eigen::Matrix3d> round = PI::internal::flat_faces_frame(normal, area, &spread);
+  REQUIRE(round);
+  CHECK(std::abs(std::abs(round->row(0).dot(Eigen::Vector3d::UnitZ())) - 1.) < 1e-9);
+  CHECK(std::abs(std::abs(round->row(1).dot(d)) - 1.) < 1e-9);
+  CHECK(round->determinant() == Approx(1.));
+  // Without the spread the peak of the facets decides, off the handle.
+  const std::optional<Eigen::Matrix3d> facets = PI::internal::flat_faces_frame(normal, area);
+  REQUIRE(facets);
+  CHECK(std::abs(facets->row(1).dot(d)) < 0.999);
+  // Flat sides at 10 degrees: the spread at 30 is ignored.
+  normal.resize(2), area.resize(2);
+  for(int i = 0; i < 4; ++i) {
+    const double t = (10. + 90. * i) * pi / 180.;
+    normal.emplace_back(std::cos(t), std::sin(t), 0.), area.push_back(20.);
+  }
+  const std::optional<Eigen::Matrix3d> flat = PI::internal::flat_faces_frame(normal, area, &spread);
+  REQUIRE(flat);
+  const Eigen::Vector3d side(std::cos(10. * pi / 180.), std::sin(10. * pi / 180.), 0.);
+  CHECK(std::max(std::abs(flat->row(1).dot(side)), std::abs(flat->row(2).dot(side))) > 1. - 1e-9);
+}
+
 TEST_CASE("cuboid decomposition does not depend on the unit: pipe.off scaled", "[cuboid]")
 {
   // pipe.off's structured mesh puts the corners of a section on one ring. Scaled by 2, 3,
