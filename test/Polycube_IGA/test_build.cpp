@@ -661,12 +661,13 @@ TEST_CASE("build falls back to a coarser grid when the finer one is not valid ei
 
 TEST_CASE("build falls back to a lower spline degree when no grid is valid at the first", "[build]")
 {
-  // head.off on one grid of 8 samples (2 spans), without the relaxed and stretched attempts:
-  // cubic (5 control points per direction and patch), patches stay uncertified after
-  // untangling; quadratic (4) on the same grid, the volume is valid.
+  // head.off on one grid of 8 samples (2 spans), without the relaxed, stretched and stiffer
+  // attempts (stiffer faces make it valid cubic): cubic (5 control points per direction and
+  // patch), patches stay uncertified after untangling; quadratic (4) on the same grid, the
+  // volume is valid.
   const Mesh m = load(data("head.off"));
   const auto one_grid =
-    PI::parameters::grid_resolution(8).maximum_grid_resolution(8).grid_relaxation_sweeps(0).stretch_rounds(0);
+    PI::parameters::grid_resolution(8).maximum_grid_resolution(8).grid_relaxation_sweeps(0).stretch_rounds(0).fold_bending_weight(0.);
   const auto cubic = PI::build_trivariate_model(m, one_grid.minimum_spline_degree(3));
   CHECK_FALSE(cubic.is_valid());
   CHECK(cubic.degree_attempts == std::vector<int>{3});
@@ -1106,6 +1107,36 @@ TEST_CASE("build stretches the patch maps when a protrusion is missed, and only 
   // A volume near the mesh is not built again (the torus: valid at once).
   const auto torus = PI::build_trivariate_model(load(data("torus.obj")));
   CHECK_FALSE(torus.stretch_attempted);
+}
+
+TEST_CASE("build fits the faces stiffer where a boundary side turns over: ring5.off is valid at degree 3 on its first grid", "[build][folds]")
+{
+  // ring5.off, 4 tori round an open centre: in its narrow middle hole the faces fitted at the
+  // default bending weight (1e-6) turn over beside the arcs, which no untangling repairs; it
+  // was valid only quadratic, after the whole ladder of grids. Stiffer (1e-4), at once.
+  const Mesh m = load(data("ring5.off"));
+  const auto model = PI::build_trivariate_model(m);
+  CHECK(model.layout.genus == 5);
+  CHECK(model.stiffer_faces_attempted);
+  CHECK(model.bending_weight == 1e-4);
+  CHECK(model.grid_attempts == std::vector<int>{16});
+  CHECK(model.degree_attempts == std::vector<int>{3});
+  check_valid_volume(model, 0., 0.02);
+  bool said = false;
+  for(const auto& w : model.warnings) said = said || w.find("the faces were fitted stiffer (bending weight 0.0001) where a boundary side turned over") == 0;
+  CHECK(said);
+  // Without that attempt, on the first grid only: sides turned over on uncertified patches.
+  const auto plain = PI::build_trivariate_model(m, PI::parameters::fold_bending_weight(0.).maximum_grid_resolution(16).minimum_grid_resolution(16)
+                                                     .minimum_spline_degree(3).node_relocation_retry(0).untangle_invalid_result(false));
+  CHECK_FALSE(plain.stiffer_faces_attempted);
+  CHECK(plain.bending_weight == 1e-6);
+  CHECK_FALSE(plain.is_valid());
+  CHECK_FALSE(PI::internal::folded_uncertified_sides(plain.volume).empty());
+  // A bad weight is refused before any work.
+  std::vector<std::string> stages;
+  CHECK_THROWS_AS(PI::build_trivariate_model(m, PI::parameters::fold_bending_weight(-1.), [&](const std::string& s) { stages.push_back(s); }),
+                  PI::Invalid_input_error);
+  CHECK(stages.empty());
 }
 
 TEST_CASE("build gives a part of the shape that the volume misses a cube of its own", "[build][protrusion]")

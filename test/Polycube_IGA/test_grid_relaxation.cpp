@@ -311,3 +311,89 @@ TEST_CASE("grid relaxation keeps a CAD block's arcs inside the solid straight be
   }
   CHECK(inside == 2);
 }
+
+TEST_CASE("a crease network locates points on sharp edges and slides them along, stopping at corners", "[grid_relaxation][creases]")
+{
+  // A unit cube of two triangles per face: every crease is one mesh edge between two
+  // corners (three sharp edges each), a crease all the same although so short.
+  const Mesh m = load(write_text("unit_cube.off", voxel_plate_off(1, 1, {}, {})));
+  const PI::internal::Crease_network<Mesh> creases(m, 45.);
+  const PI::internal::Mesh_probe<Mesh> probe(m);
+  auto at = [&](const Eigen::Vector3d& p) {
+    const auto s = probe.closest_point(p);
+    return creases.locate(s.point, std::size_t(s.hint.second), 1e-9);
+  };
+  const PI::internal::Crease_position mid = at(Eigen::Vector3d(0.5, 0., 0.));
+  REQUIRE(mid.kind == PI::internal::Crease_position::on_edge);
+  CHECK(at(Eigen::Vector3d(0., 0., 0.)).kind == PI::internal::Crease_position::at_corner);
+  CHECK(at(Eigen::Vector3d(1., 1., 1.)).kind == PI::internal::Crease_position::at_corner);
+  CHECK(at(Eigen::Vector3d(0.5, 0.5, 0.)).kind == PI::internal::Crease_position::off); // a face's middle
+  CHECK(at(Eigen::Vector3d(0.3, 0.3, 0.)).kind == PI::internal::Crease_position::off); // on a face's diagonal
+  // Along the edge, its nearest point; beyond the corner, the corner: paths end there.
+  std::size_t e = mid.edge;
+  CHECK((creases.slide(Eigen::Vector3d(0.25, 0.1, -0.2), &e) - Eigen::Vector3d(0.25, 0., 0.)).norm() < 1e-15);
+  CHECK(e == mid.edge);
+  CHECK((creases.slide(Eigen::Vector3d(3., 0.2, 0.5), &e) - Eigen::Vector3d(1., 0., 0.)).norm() < 1e-15);
+
+  // Creases without corners (pipe.off's four run round its ring, 160 sharp edges, each vertex
+  // on two) are closed paths: a point slides along them and stays on them.
+  const Mesh c = load(data("pipe.off"));
+  const PI::internal::Crease_network<Mesh> rims(c, 45.);
+  const PI::internal::Mesh_probe<Mesh> cp(c);
+  std::size_t found = 0;
+  for(auto h : halfedges(c)) {
+    const auto& a = c.point(source(h, c));
+    const auto& b = c.point(target(h, c));
+    const Eigen::Vector3d p(0.5 * (a.x() + b.x()), 0.5 * (a.y() + b.y()), 0.5 * (a.z() + b.z()));
+    const auto s = cp.closest_point(p);
+    const PI::internal::Crease_position q = rims.locate(s.point, std::size_t(s.hint.second), 1e-9);
+    if(q.kind != PI::internal::Crease_position::on_edge) continue;
+    ++found;
+    // Slid towards a point off the mesh, it stays on sharp edges: sliding again stays put.
+    std::size_t f = q.edge;
+    const Eigen::Vector3d y = rims.slide(p + Eigen::Vector3d(0.3, -0.2, 0.1), &f);
+    std::size_t g = f;
+    CHECK((rims.slide(y, &g) - y).norm() < 1e-12);
+    if(found == 20) break;
+  }
+  CHECK(found == 20);
+}
+
+TEST_CASE("grid relaxation slides points on a crease along it and keeps the creases' corners", "[grid_relaxation][creases]")
+{
+  // The L block: its arcs along the box's sharp edges are sampled on them, its corner nodes
+  // sit at the creases' corners. Relaxed, the corners stay and the samples stay on the
+  // creases (moved freely, a node on a hole's rim went down the hole's wall).
+  const Layout L = PI::Cuboid_decomposition<Mesh>()(load(write_text("l_block.off", voxel_l_off())));
+  REQUIRE(L.layout_class == PI::Layout_class::blocks);
+  const int N = 8;
+  const PI::Patch_grids before = PI::sample_layout_patches(L, PI::parameters::grid_resolution(N));
+  PI::Patch_grids after = before;
+  const PI::Grid_relaxation_result r = PI::relax_surface_grids(L, after, PI::Grid_relaxation_options());
+  REQUIRE(r.sweeps > 0);
+  CHECK(borders_are_arc_samples(L, after));
+  const PI::internal::Crease_network<Layout::Mesh> creases(L.mesh, 45.);
+  const PI::internal::Mesh_probe<Layout::Mesh> probe(L.mesh);
+  int corners = 0, on_creases = 0, slid = 0;
+  for(std::size_t a = 0; a < L.arcs.size(); ++a) {
+    if(L.arcs[a].inside) continue;
+    for(int k = 0; k <= N; ++k) {
+      const Eigen::Vector3d &p = before.arc_samples[a][std::size_t(k)], &q = after.arc_samples[a][std::size_t(k)];
+      const auto s = probe.closest_point(p);
+      const PI::internal::Crease_position c = creases.locate(s.point, std::size_t(s.hint.second), 1e-9);
+      if(c.kind == PI::internal::Crease_position::at_corner) {
+        ++corners;
+        CHECK(q == p);
+      } else if(c.kind == PI::internal::Crease_position::on_edge) {
+        ++on_creases;
+        std::size_t e = c.edge;
+        CHECK((creases.slide(q, &e) - q).norm() < 1e-12);
+        slid += int((q - p).norm() > 1e-6);
+      }
+    }
+  }
+  CHECK(corners > 0);
+  CHECK(on_creases > 0);
+  INFO("slid " << slid);
+  CHECK(slid > 0);
+}

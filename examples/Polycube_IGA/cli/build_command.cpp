@@ -112,6 +112,8 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("relaxed_grids", V.relaxation.sweeps > 0)
       .member("stretch_attempted", model.stretch_attempted)
       .member("stretch_rounds", model.stretch_rounds)
+      .member("stiffer_faces_attempted", model.stiffer_faces_attempted)
+      .member("bending_weight", model.bending_weight)
       .member("belt_phase", model.belt_phase)
       .member("sphere_chain", model.sphere_chain)
       .member("corners_off_steps", model.corners_off_steps)
@@ -232,7 +234,7 @@ int run_build(const Arguments& args)
   Parsed_arguments a(args, {"--merge-duplicates", "--drop-isolated", "--no-self-intersection-test", "--allow-invalid", "--quiet",
                       "--no-untangle", "--no-step-retry", "--balance-corners", "--no-chain", "--no-blocks", "--polycube", "--no-polycube-retry"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
-                      "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--min-degree", "--relax-sweeps", "--stretch-rounds",
+                      "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--min-degree", "--relax-sweeps", "--stretch-rounds", "--fold-bending",
                       "--sharp-boundary-turn", "--belt-phases", "--relax-arcs", "--relocate-nodes", "--relocation-retry", "--cut-pair-trials", "--missing-part-cubes",
                       "--small-handle-length", "--untangling-budget", "--polycube-first-alignment", "--polycube-relax-arcs"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
@@ -249,6 +251,7 @@ int run_build(const Arguments& args)
   const int min_degree = positive_option(a, "--min-degree", PI::default_minimum_spline_degree(degree), 1, degree);
   const int sweeps = positive_option(a, "--relax-sweeps", 100, 0, 100000);
   const int stretch = positive_option(a, "--stretch-rounds", 3, 0, 100);
+  const double fold_bending = fraction_option(a, "--fold-bending", 1e-4, 0., 1.);
   const double sharp_turn = fraction_option(a, "--sharp-boundary-turn", 60., 0., 180.);
   const int belt_phases = positive_option(a, "--belt-phases", 4, 1, 8);
   const int arc_sweeps = positive_option(a, "--relax-arcs", 0, 0, 100);
@@ -288,7 +291,7 @@ int run_build(const Arguments& args)
     mesh, PI::parameters::grid_resolution(grid).spline_degree(degree).cut_criterion(criterion).boundary_layer(layer)
       .untangle_volume(!a.has("--no-untangle")).maximum_boundary_distance(max_distance)
       .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid).minimum_spline_degree(min_degree)
-      .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).sharp_boundary_turn(sharp_turn).belt_phases(belt_phases)
+      .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).fold_bending_weight(fold_bending).sharp_boundary_turn(sharp_turn).belt_phases(belt_phases)
       .step_retry(!a.has("--no-step-retry")).sphere_chain(!a.has("--no-chain")).orthogonal_blocks(!a.has("--no-blocks")).polycube_map(a.has("--polycube")).polycube_retry(!a.has("--no-polycube-retry")).polycube_first_alignment(polycube_first).arc_relaxation_sweeps(arc_sweeps).polycube_arc_relaxation_sweeps(polycube_arc_sweeps).node_relocation_sweeps(node_sweeps).node_relocation_retry(retry_sweeps).cut_pair_trials(pair_trials)
       .missing_part_cubes(missing_part_cubes).balance_pants_corners(a.has("--balance-corners")).untangling_budget(untangling_budget)
       // An invalid volume is not written without --allow-invalid: no time spent improving it.
@@ -361,7 +364,7 @@ Register_command build_command("build", {
   "usage: polycube_iga build MESH -o OUT.xml [--vtu OUT.vtu] [--layout-vtu L.vtu] [--layout-json L.json]\n"
   "                          [--report R.json] [--grid N] [--degree P] [--criterion length|minima|symmetry]\n"
   "                          [--boundary-layer T] [--max-distance F] [--max-refinements R] [--max-grid M]\n"
-  "                          [--min-grid M] [--min-degree D] [--relax-sweeps S] [--stretch-rounds R]\n"
+  "                          [--min-grid M] [--min-degree D] [--relax-sweeps S] [--stretch-rounds R] [--fold-bending W]\n"
   "                          [--sharp-boundary-turn D] [--no-chain] [--no-blocks] [--polycube] [--no-polycube-retry]\n"
   "                          [--polycube-first-alignment A] [--belt-phases K] [--no-step-retry] [--relax-arcs K]\n"
   "                          [--polycube-relax-arcs K]\n"
@@ -390,7 +393,10 @@ Register_command build_command("build", {
   "  --stretch-rounds R  if the boundary is then farther from the mesh than --max-distance, build\n"
   "                    it again from patch maps with R rounds of stretch reduction (default 3;\n"
   "                    0: never), which give protrusions their share of the grid; kept if better\n"
-  "  --sharp-boundary-turn D  where an input boundary loop turns by more than D degrees at a\n"
+  "  --fold-bending W  if a boundary side of an uncertified patch then turns over, fit the faces\n"
+  "                    again with bending weight W (default 1e-4, against 1e-6; 0: never), whose\n"
+  "                    stiffer faces keep their inner control points inside along a crease; kept\n"
+  "                    if better, and the other grids follow\n"  "  --sharp-boundary-turn D  where an input boundary loop turns by more than D degrees at a\n"
   "                    vertex inside a layout arc, round the arc there within the vertex's two\n"
   "                    edges (default 60; 0: never): a sharp tip inside a patch side folds the\n"
   "                    slab under it\n"

@@ -54,6 +54,7 @@ namespace Polycube_IGA {
   X(grid_resolution_t, grid_resolution)                                             \
   X(smooth_interior_patches_t, smooth_interior_patches)                             \
   X(stretch_rounds_t, stretch_rounds)                                               \
+  X(fold_bending_weight_t, fold_bending_weight)                                     \
   X(sharp_boundary_turn_t, sharp_boundary_turn)                                     \
   /* volume */                                                                      \
   X(boundary_layer_t, boundary_layer)                                               \

@@ -16,9 +16,11 @@
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace CGAL {
@@ -103,6 +105,127 @@ Feature_curves feature_curves(const Mesh& m, const std::vector<bool>& sharp)
   }
   return fc;
 }
+
+/// Where a point of the mesh lies on its creases (Crease_network::locate()).
+struct Crease_position
+{
+  enum Kind { off, on_edge, at_corner } kind = off;
+  std::size_t edge = 0; ///< with on_edge: the sharp edge (by index) holding the point
+};
+
+/// The sharp edges of a mesh as paths a point can slide along (the grid relaxation's). A
+/// path runs through vertices with two sharp edges and ends at the others (corners: a
+/// box's, or where a crease ends). A path of fewer than `shortest` edges with a loose end
+/// (a vertex with one sharp edge) is not a crease but noise: a scanned surface's odd sharp
+/// edge; between two corners it is one (a coarse box's edge).
+template <class Mesh>
+class Crease_network
+{
+public:
+  Crease_network(const Mesh& m, double angle_degrees, std::size_t shortest = 3)
+    : m_(m), sharp_(sharp_edges(m, angle_degrees)), degree_(num_vertices(m), 0), keep_(num_edges(m), false), ends_(num_edges(m))
+  {
+    for(auto e : edges(m)) {
+      ends_[std::size_t(e)] = {source(halfedge(e, m), m), target(halfedge(e, m), m)};
+      if(sharp_[std::size_t(e)]) {
+        ++degree_[std::size_t(source(halfedge(e, m), m))];
+        ++degree_[std::size_t(target(halfedge(e, m), m))];
+      }
+    }
+    // Path lengths: each path walked once from its lowest edge index, in index order.
+    std::vector<bool> seen(num_edges(m), false);
+    for(auto e : edges(m)) {
+      if(!sharp_[std::size_t(e)] || seen[std::size_t(e)]) continue;
+      std::vector<std::size_t> path;
+      std::vector<std::size_t> todo{std::size_t(e)};
+      seen[std::size_t(e)] = true;
+      bool loose = false;
+      while(!todo.empty()) {
+        const std::size_t f = todo.back();
+        todo.pop_back();
+        path.push_back(f);
+        loose = loose || degree_[std::size_t(ends_[f].first)] == 1 || degree_[std::size_t(ends_[f].second)] == 1;
+        for(std::size_t g : next_edges(f))
+          if(!seen[g]) seen[g] = true, todo.push_back(g);
+      }
+      if(path.size() >= shortest || !loose)
+        for(std::size_t f : path) keep_[f] = true;
+    }
+  }
+
+  /// Whether `p`, a point of face `f` (index), lies on a crease: on one of the face's kept
+  /// sharp edges, or at a corner of the creases, within `tolerance`.
+  Crease_position locate(const Eigen::Vector3d& p, std::size_t f, double tolerance) const
+  {
+    Crease_position r;
+    for(auto h : halfedges_around_face(halfedge(face_descriptor(f), m_), m_)) {
+      const std::size_t e = std::size_t(edge(h, m_));
+      if(!keep_[e]) continue;
+      const auto [a, b] = ends(e);
+      const Eigen::Vector3d q = project_on_segment(p, point(a), point(b), 0, 1, 0).point;
+      if((q - p).norm() > tolerance) continue;
+      for(auto v : {a, b})
+        if((point(v) - p).norm() <= tolerance && degree_[std::size_t(v)] != 2) return {Crease_position::at_corner, e};
+      if(r.kind == Crease_position::off) r = {Crease_position::on_edge, e};
+    }
+    return r;
+  }
+
+  /// The point nearest `target` on the crease path through `*edge`, within `reach` edges of
+  /// it either way; `*edge` becomes the edge holding it (the first found of equals).
+  Eigen::Vector3d slide(const Eigen::Vector3d& target, std::size_t* edge, std::size_t reach = 64) const
+  {
+    const auto [a0, b0] = ends(*edge);
+    Eigen::Vector3d best = project_on_segment(target, point(a0), point(b0), 0, 1, 0).point;
+    double d = (best - target).squaredNorm();
+    std::vector<std::size_t> visited{*edge}, frontier{*edge};
+    for(std::size_t k = 0; k < reach && !frontier.empty(); ++k) {
+      std::vector<std::size_t> next;
+      for(std::size_t f : frontier)
+        for(std::size_t g : next_edges(f)) {
+          if(std::find(visited.begin(), visited.end(), g) != visited.end()) continue;
+          visited.push_back(g);
+          next.push_back(g);
+          const auto [a, b] = ends(g);
+          const Eigen::Vector3d q = project_on_segment(target, point(a), point(b), 0, 1, 0).point;
+          if((q - target).squaredNorm() < d) d = (q - target).squaredNorm(), best = q, *edge = g;
+        }
+      frontier = std::move(next);
+    }
+    return best;
+  }
+
+private:
+  using vertex_descriptor = typename boost::graph_traits<Mesh>::vertex_descriptor;
+  using face_descriptor = typename boost::graph_traits<Mesh>::face_descriptor;
+
+  std::pair<vertex_descriptor, vertex_descriptor> ends(std::size_t e) const { return ends_[e]; }
+  Eigen::Vector3d point(vertex_descriptor v) const
+  {
+    const auto& q = get(CGAL::vertex_point, m_, v);
+    return Eigen::Vector3d(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z()));
+  }
+  /// The sharp edges that continue the path of sharp edge e at its ends (not past corners).
+  std::vector<std::size_t> next_edges(std::size_t e) const
+  {
+    std::vector<std::size_t> r;
+    const auto [a, b] = ends(e);
+    for(auto v : {a, b}) {
+      if(degree_[std::size_t(v)] != 2) continue;
+      for(auto h : halfedges_around_source(v, m_)) {
+        const std::size_t g = std::size_t(edge(h, m_));
+        if(g != e && sharp_[g]) r.push_back(g);
+      }
+    }
+    return r;
+  }
+
+  const Mesh& m_;
+  std::vector<bool> sharp_;
+  std::vector<std::size_t> degree_;
+  std::vector<bool> keep_;
+  std::vector<std::pair<vertex_descriptor, vertex_descriptor>> ends_;
+};
 
 } // namespace internal
 } // namespace Polycube_IGA

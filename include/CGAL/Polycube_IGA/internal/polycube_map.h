@@ -118,6 +118,8 @@ inline std::optional<Eigen::Matrix3d> flat_faces_frame(const std::vector<Eigen::
       const Eigen::Matrix2d s{{u.dot(*spread * u), u.dot(*spread * w)}, {w.dot(*spread * u), w.dot(*spread * w)}};
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(s);
       const Eigen::Vector2d e = eig.eigenvectors().col(1);
+      // A spread nearly round across a0 (a plain cylinder) has no furthest direction: its
+      // eigenvector is rounding noise, so the facets' peak stays.
       if(eig.eigenvalues()[1] > 1.1 * eig.eigenvalues()[0]) t = std::atan2(e.y(), e.x());
     }
     Eigen::Matrix3d g;
