@@ -583,7 +583,7 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
     Layout_volume_result r = attempt("volume construction, stiffer faces", stiffer, "fitting stiffer faces");
     const std::size_t before = internal::uncertified_patches(model.volume), after = internal::uncertified_patches(r);
     const std::size_t folded = internal::folded_uncertified_sides(r).size();
-    if(better_than_kept(r) && (folded == 0 || internal::invalidity_reasons(r, model.maximum_boundary_distance).empty())) {
+    if(better_than_kept(r) && folded == 0) { // a valid volume has none: its patches are all certified
       model.warnings.push_back("the faces were fitted stiffer (bending weight " + internal::short_number(fold_bending) +
                                ") where a boundary side turned over: " + std::to_string(after) +
                                " patches not certified instead of " + std::to_string(before) + " (before untangling)");

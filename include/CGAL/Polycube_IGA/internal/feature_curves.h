@@ -46,6 +46,19 @@ std::vector<bool> sharp_edges(const Mesh& m, double angle_degrees)
   return sharp;
 }
 
+/// The number of `sharp` edges (per edge) at each vertex.
+template <class Mesh>
+std::vector<std::size_t> sharp_degrees(const Mesh& m, const std::vector<bool>& sharp)
+{
+  std::vector<std::size_t> degree(num_vertices(m), 0);
+  for(auto e : edges(m))
+    if(sharp[std::size_t(e)]) {
+      ++degree[std::size_t(source(halfedge(e, m), m))];
+      ++degree[std::size_t(target(halfedge(e, m), m))];
+    }
+  return degree;
+}
+
 /// The curves that sharp edges form: `corners` are the vertices with other than two sharp
 /// edges (ends and junctions), `curves` the vertex paths between corners through vertices
 /// with two; `closed` counts the curves that are loops without a corner (not listed).
@@ -63,12 +76,7 @@ template <class Mesh>
 Feature_curves feature_curves(const Mesh& m, const std::vector<bool>& sharp)
 {
   Feature_curves fc;
-  fc.sharp_degree.assign(num_vertices(m), 0);
-  for(auto e : edges(m))
-    if(sharp[std::size_t(e)]) {
-      ++fc.sharp_degree[std::size_t(source(halfedge(e, m), m))];
-      ++fc.sharp_degree[std::size_t(target(halfedge(e, m), m))];
-    }
+  fc.sharp_degree = sharp_degrees(m, sharp);
   for(auto v : vertices(m))
     if(fc.sharp_degree[std::size_t(v)] > 0 && fc.sharp_degree[std::size_t(v)] != 2) fc.corners.push_back(std::size_t(v));
   std::vector<bool> used(num_edges(m), false);
@@ -123,15 +131,9 @@ class Crease_network
 {
 public:
   Crease_network(const Mesh& m, double angle_degrees, std::size_t shortest = 3)
-    : m_(m), sharp_(sharp_edges(m, angle_degrees)), degree_(num_vertices(m), 0), keep_(num_edges(m), false), ends_(num_edges(m))
+    : m_(m), sharp_(sharp_edges(m, angle_degrees)), degree_(sharp_degrees(m, sharp_)), keep_(num_edges(m), false), ends_(num_edges(m))
   {
-    for(auto e : edges(m)) {
-      ends_[std::size_t(e)] = {source(halfedge(e, m), m), target(halfedge(e, m), m)};
-      if(sharp_[std::size_t(e)]) {
-        ++degree_[std::size_t(source(halfedge(e, m), m))];
-        ++degree_[std::size_t(target(halfedge(e, m), m))];
-      }
-    }
+    for(auto e : edges(m)) ends_[std::size_t(e)] = {source(halfedge(e, m), m), target(halfedge(e, m), m)};
     // Path lengths: each path walked once from its lowest edge index, in index order.
     std::vector<bool> seen(num_edges(m), false);
     for(auto e : edges(m)) {
@@ -175,23 +177,30 @@ public:
   /// it either way; `*edge` becomes the edge holding it (the first found of equals).
   Eigen::Vector3d slide(const Eigen::Vector3d& target, std::size_t* edge, std::size_t reach = 64) const
   {
-    const auto [a0, b0] = ends(*edge);
+    // A path is a chain (its inner vertices have two sharp edges): walk it from both ends of
+    // *edge in lockstep, end a's step first, and stop a walk at a corner or where it meets
+    // the other on a closed path. Equals keep the first found.
+    const std::size_t start = *edge;
+    const auto [a0, b0] = ends(start);
     Eigen::Vector3d best = project_on_segment(target, point(a0), point(b0), 0, 1, 0).point;
     double d = (best - target).squaredNorm();
-    std::vector<std::size_t> visited{*edge}, frontier{*edge};
-    for(std::size_t k = 0; k < reach && !frontier.empty(); ++k) {
-      std::vector<std::size_t> next;
-      for(std::size_t f : frontier)
-        for(std::size_t g : next_edges(f)) {
-          if(std::find(visited.begin(), visited.end(), g) != visited.end()) continue;
-          visited.push_back(g);
-          next.push_back(g);
-          const auto [a, b] = ends(g);
-          const Eigen::Vector3d q = project_on_segment(target, point(a), point(b), 0, 1, 0).point;
-          if((q - target).squaredNorm() < d) d = (q - target).squaredNorm(), best = q, *edge = g;
+    struct Walk { std::size_t edge; vertex_descriptor far; bool on; };
+    Walk w[2] = {{start, a0, true}, {start, b0, true}};
+    for(std::size_t k = 0; k < reach && (w[0].on || w[1].on); ++k)
+      for(int s = 0; s < 2; ++s) {
+        Walk& x = w[s];
+        if(!x.on) continue;
+        const std::size_t g = continuation(x.edge, x.far);
+        if(g == x.edge || g == w[1 - s].edge) { // a corner, or the other walk's edge
+          x.on = false;
+          continue;
         }
-      frontier = std::move(next);
-    }
+        const auto [a, b] = ends(g);
+        x.edge = g;
+        x.far = a == x.far ? b : a;
+        const Eigen::Vector3d q = project_on_segment(target, point(a), point(b), 0, 1, 0).point;
+        if((q - target).squaredNorm() < d) d = (q - target).squaredNorm(), best = q, *edge = g;
+      }
     return best;
   }
 
@@ -204,6 +213,16 @@ private:
   {
     const auto& q = get(CGAL::vertex_point, m_, v);
     return Eigen::Vector3d(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z()));
+  }
+  /// The sharp edge other than `e` at `v` if v has two, else `e` (v is a corner).
+  std::size_t continuation(std::size_t e, vertex_descriptor v) const
+  {
+    if(degree_[std::size_t(v)] != 2) return e;
+    for(auto h : halfedges_around_source(v, m_)) {
+      const std::size_t g = std::size_t(edge(h, m_));
+      if(g != e && sharp_[g]) return g;
+    }
+    return e;
   }
   /// The sharp edges that continue the path of sharp edge e at its ends (not past corners).
   std::vector<std::size_t> next_edges(std::size_t e) const
