@@ -20,6 +20,10 @@ def circle_edges_where(vol, keep):
     """The circles among vol's edges whose bounding box (xmin, ymin, zmin, xmax, ymax, zmax) keep() accepts."""
     return [c for c in edges_of(vol) if gmsh.model.getType(1, c) == 'Circle' and keep(gmsh.model.getBoundingBox(1, c))]
 
+def line_edges_where(vol, keep):
+    """The straight lines among vol's edges whose bounding box keep() accepts."""
+    return [c for c in edges_of(vol) if gmsh.model.getType(1, c) == 'Line' and keep(gmsh.model.getBoundingBox(1, c))]
+
 def circ_edges(vol):
     occ().synchronize()
     return [c for c in edges_of(vol) if gmsh.model.getType(1, c) == 'Circle']
@@ -92,11 +96,7 @@ def box3holes():
     r, _ = o.cut([(3, b)], hs)
     o.synchronize()
     v = r[0][1]
-    vert = []
-    for c in edges_of(v):
-        bb = gmsh.model.getBoundingBox(1, c)
-        if gmsh.model.getType(1, c) == 'Line' and bb[5] - bb[2] > 1.5: vert.append(c)
-    try_fillet(v, vert, 0.4)
+    try_fillet(v, line_edges_where(v, lambda bb: bb[5] - bb[2] > 1.5), 0.4)
     o.synchronize()
 
 def cross_holes():
@@ -119,6 +119,21 @@ def shaft():
     try_fillet(v, circle_edges_where(v, lambda bb: abs(bb[2]) < 1e-6 or abs(bb[2] - 9) < 1e-6), 0.25)
     o.synchronize()
 
+def plate6holes():
+    # added Dec 2026 to reach genus 6 (one handle per hole)
+    o = occ()
+    b = o.addBox(0, 0, 0, 9, 6, 1)
+    hs = [(3, o.addCylinder(x, y, -1, 0, 0, 3, 0.7)) for x in (1.5, 4.5, 7.5) for y in (1.5, 4.5)]
+    r, _ = o.cut([(3, b)], hs)
+    o.synchronize()
+    v = r[0][1]
+    # pick the 4 box corners by position: the holes' seam lines are vertical Lines too
+    corners = line_edges_where(v, lambda bb: bb[5] - bb[2] > 0.9 and min(abs(bb[0]), abs(bb[0] - 9)) < 1e-6 and
+                               min(abs(bb[1]), abs(bb[1] - 6)) < 1e-6)
+    assert len(corners) == 4, corners
+    try_fillet(v, corners, 0.5)
+    o.synchronize()
+
 SHAPES = [
     ('cad_flange_5holes', flange, 'disk r=5 t=1, central hole + 4 bolt holes, outer rims filleted', 0.3),
     ('cad_L_bracket_2holes', lbracket, 'L bracket (two 6x4x1 legs) with one round hole per leg, inner corner filleted', 0.3),
@@ -128,6 +143,7 @@ SHAPES = [
     ('cad_box_3holes', box3holes, 'box 8x3x2 with 3 parallel through-holes, vertical edges filleted', 0.3),
     ('cad_cube_cross_holes', cross_holes, 'cube 4^3 with crossing through-holes along x (r=.8) and y (r=.6)', 0.3),
     ('cad_stepped_shaft', shaft, '3 coaxial cylinders r=2/1.4/0.9 fused, end rims filleted', 0.3),
+    ('cad_plate_6holes', plate6holes, 'plate 9x6x1 with 6 through-holes r=0.7 (3x2), vertical edges filleted r=0.5', 0.3),
 ]
 
 if __name__ == '__main__':

@@ -97,15 +97,36 @@ def banana(X, Y, Z):
     r = 0.7 * (1 - 0.45 * (pc / pmax) ** 2)
     return d - r
 
+def holed_slab(X, Y, Z, half, rr, centres, hr, k=0.25):
+    """Rounded box (half-extents half, edge radius rr) minus vertical holes of radius hr, smooth-max cut."""
+    b = np.array(half, float)
+    q = np.stack([np.abs(X), np.abs(Y), np.abs(Z)]) - (b - rr)[:, None, None, None]
+    f = np.linalg.norm(np.maximum(q, 0), axis=0) + np.minimum(q.max(0), 0) - rr
+    for cx, cy in centres:
+        cyl = np.sqrt((X - cx) ** 2 + (Y - cy) ** 2) - hr
+        f = smax(f, -cyl, k)
+    return f
+
 def plate4(X, Y, Z):
     # rounded box 6 x 6 x 1 (edge radius 0.4)
-    b = np.array([3.0, 3.0, 0.5]); rr = 0.4
-    q = np.stack([np.abs(X), np.abs(Y), np.abs(Z)]) - (b - rr)[:, None, None, None]
-    box = np.linalg.norm(np.maximum(q, 0), axis=0) + np.minimum(q.max(0), 0) - rr
-    f = box
-    for cx, cy in [(-1.4, -1.4), (1.4, -1.4), (-1.4, 1.4), (1.4, 1.4)]:
-        cyl = np.sqrt((X - cx) ** 2 + (Y - cy) ** 2) - 0.7
-        f = smax(f, -cyl, 0.25)
+    return holed_slab(X, Y, Z, (3.0, 3.0, 0.5), 0.4, [(-1.4, -1.4), (1.4, -1.4), (-1.4, 1.4), (1.4, 1.4)], 0.7)
+
+# The two below were added in Dec 2026 to cover genus 6 and a 2D (not in-a-row) torus arrangement.
+def plate6(X, Y, Z):
+    # rounded box 8 x 5.5 x 1.1, holes 3 x 2; rims stay >= 0.75 wide
+    return holed_slab(X, Y, Z, (4.0, 2.75, 0.55), 0.4, [(x, y) for x in (-2.6, 0.0, 2.6) for y in (-1.3, 1.3)], 0.65)
+
+QUAD_D = 1.85   # centre spacing of the 2 x 2 tori
+
+def quad_torus(X, Y, Z):
+    # With the row spacing of genus3 (2.2) the four blends enclose an empty centre, a 5th handle
+    # (genus 5). The centre fills at spacing <= 2.0; 1.85 makes it about as thick as a tube
+    # (0.66) while each torus keeps a hole of radius >= 0.5, so the genus is 4.
+    c = QUAD_D / 2
+    f = None
+    for cx, cy in [(-c, -c), (c, -c), (c, c), (-c, c)]:
+        t = torus(X, Y - cy, Z, cx, 1.0, 0.33)
+        f = t if f is None else smin(f, t, 0.25)
     return f
 
 SHAPES = [
@@ -115,6 +136,8 @@ SHAPES = [
     ('org_twisted_torus', twisted_torus, (-2.4, -2.4, -0.7), (2.4, 2.4, 0.7), 'torus R=1.6 with elliptic twisting section and minor radius varying sin(3t)'),
     ('org_banana', banana, (0.5, -3.5, -1.0), (4.0, 3.5, 1.0), 'tapered capsule swept along a 130 deg circular arc (R=3)'),
     ('org_plate_4holes', plate4, (-3.3, -3.3, -0.8), (3.3, 3.3, 0.8), 'rounded slab 6x6x1 with 4 holes, smooth-max subtraction'),
+    ('org_plate_6holes', plate6, (-4.3, -3.05, -0.85), (4.3, 3.05, 0.85), 'rounded slab 8x5.5x1.1 with 6 holes (3x2), smooth-max subtraction'),
+    ('org_quad_torus_genus4', quad_torus, (-2.6, -2.6, -0.6), (2.6, 2.6, 0.6), 'four tori R=1 r=.33 in a 2x2 square (spacing 1.85), smooth union'),
 ]
 
 if __name__ == '__main__':

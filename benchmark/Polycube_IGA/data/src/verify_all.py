@@ -1,7 +1,10 @@
 import os, sys, glob, numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from common import *
+# optional mesh names (with or without .off) restrict the check, e.g. to newly added meshes
+sel = set(a[:-4] if a.endswith('.off') else a for a in sys.argv[1:])
 for p in sorted(glob.glob(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '*.off'))):
+    if sel and os.path.basename(p)[:-4] not in sel: continue
     V, F = read_off(p)
     V2, F2, info = check(V, F, fix_orientation=False)
     assert len(V2) == len(V)
