@@ -354,6 +354,13 @@ TEST_CASE("a crease network locates points on sharp edges and slides them along,
     const Eigen::Vector3d y = rims.slide(p + Eigen::Vector3d(0.3, -0.2, 0.1), &f);
     std::size_t g = f;
     CHECK((rims.slide(y, &g) - y).norm() < 1e-12);
+    // A rim is a regular 40-gon round the y axis: the point across it is half the rim away,
+    // 20 edges either way, where the two walks from the edge meet. Within reach it is found;
+    // 10 edges either way stop short of it.
+    const Eigen::Vector3d across(-p.x(), p.y(), -p.z());
+    std::size_t far = q.edge, near = q.edge;
+    CHECK((rims.slide(across, &far) - across).norm() < 1e-5); // the mesh is symmetric to 2e-6
+    CHECK((rims.slide(across, &near, 10) - across).norm() > 0.1);
     if(found == 20) break;
   }
   CHECK(found == 20);
