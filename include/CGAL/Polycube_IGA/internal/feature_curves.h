@@ -229,13 +229,8 @@ private:
   {
     std::vector<std::size_t> r;
     const auto [a, b] = ends(e);
-    for(auto v : {a, b}) {
-      if(degree_[std::size_t(v)] != 2) continue;
-      for(auto h : halfedges_around_source(v, m_)) {
-        const std::size_t g = std::size_t(edge(h, m_));
-        if(g != e && sharp_[g]) r.push_back(g);
-      }
-    }
+    for(auto v : {a, b})
+      if(const std::size_t g = continuation(e, v); g != e) r.push_back(g);
     return r;
   }
 
