@@ -1032,6 +1032,11 @@ TEST_CASE("layout volume named parameters match the options struct", "[layout_vo
   o.spans = 0;
   o.sampling.grid_segments = 3;
   CHECK(PI::layout_volume(L, o).spans == 1);
+  // Options of the untangling.
+  CHECK(PI::layout_volume_options(PI::parameters::default_values()).untangling.focused_sample_rounds ==
+        PI::Volume_untangling_options().focused_sample_rounds);
+  CHECK(PI::layout_volume_options(PI::parameters::focused_sample_rounds(0)).untangling.focused_sample_rounds == 0);
+  CHECK_THROWS_AS(PI::layout_volume_options(PI::parameters::focused_sample_rounds(-1)), PI::Invalid_input_error);
 }
 
 TEST_CASE("patch sampling rejects bad resolutions and mismatched grids", "[layout_volume]")

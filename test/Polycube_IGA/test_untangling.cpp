@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
 #include <vector>
 
 namespace PI = CGAL::Polycube_IGA;
@@ -462,6 +463,69 @@ TEST_CASE("untangling takes a patch positive at every sample but folded between 
   CHECK(r.positive_at_samples);
   CHECK(PI::certified_jacobian_bound(mv.patch(0)).certified_positive);
   for(int s = 1; s <= 6; ++s) CHECK(boundary_points_equal(mv.patch(0), v, s));
+}
+
+TEST_CASE("a fold no sample sees is found by samples where the certificate's bound is lowest", "[untangling]")
+{
+  // The folded box of the test above, sampled at its span ends only (2 points per span, no
+  // denser): its 8 samples are the corners, whose det J the fixed boundary alone sets, so the
+  // energy cannot see the fold. The certificate names where its bound is lowest; one sample
+  // there per direction brings the fold into the energy.
+  PI::Tensor_bspline_volume v = box(0., 1);
+  v.control_point({{1, 1, 1}}).x() -= 1.8;
+  const PI::Jacobian_bound folded = PI::certified_jacobian_bound(v);
+  REQUIRE(folded.has_nonpositive_value);
+  PI::Volume_untangling_options o;
+  o.points_per_span = o.maximum_points_per_span = 2;
+  SECTION("without focused samples the fold stays")
+  {
+    o.focused_sample_rounds = 0;
+    PI::Multipatch_volume mv = closed(v);
+    const PI::Volume_untangling_result r = PI::untangle_volume(mv, o);
+    CHECK(r.focused_samples == 0);
+    CHECK(r.uncertified_patches == std::vector<std::size_t>{0});
+    CHECK_FALSE(PI::certified_jacobian_bound(mv.patch(0)).certified_positive);
+  }
+  SECTION("a focused sample below the floor stops the focusing before its rounds")
+  {
+    o.focused_sample_floor = 0.; // the fold's sample is negative
+    PI::Multipatch_volume mv = closed(v);
+    const PI::Volume_untangling_result r = PI::untangle_volume(mv, o);
+    CHECK(r.focused_samples > 0);
+    CHECK(r.uncertified_patches == std::vector<std::size_t>{0});
+  }
+  SECTION("with them the patch is certified and its boundary unmoved")
+  {
+    REQUIRE(o.focused_sample_rounds > 0);
+    PI::Multipatch_volume mv = closed(v);
+    const PI::Volume_untangling_result r = PI::untangle_volume(mv, o);
+    CHECK(r.focused_samples > 0);
+    CHECK(r.focused_samples <= std::size_t(3 * o.focused_sample_rounds));
+    CHECK_FALSE(r.reverted);
+    CHECK(r.uncertified_patches.empty());
+    CHECK(PI::certified_jacobian_bound(mv.patch(0)).certified_positive);
+    for(int s = 1; s <= 6; ++s) CHECK(boundary_points_equal(mv.patch(0), v, s));
+  }
+}
+
+TEST_CASE("a focused sample is added in order, lighter than every Gauss-Lobatto weight, and only once", "[untangling]")
+{
+  const PI::Knot_vector kv = PI::Knot_vector::uniform(3, 2);
+  PI::internal::Span_points p = PI::internal::span_points_with_ends(kv, 3); // 0, 1/4, 1/2, 3/4, 1
+  REQUIRE(p.t.size() == 5);
+  const double lightest = *std::min_element(p.w.begin(), p.w.end());
+  const double total = std::accumulate(p.w.begin(), p.w.end(), 0.);
+  CHECK(total == Approx(1.));
+  CHECK(PI::internal::add_focused_point(p, 0.3));
+  REQUIRE(p.t.size() == 6);
+  CHECK(std::is_sorted(p.t.begin(), p.t.end()));
+  CHECK(p.t[2] == 0.3);
+  CHECK(p.w[2] == 0.25 * lightest);
+  CHECK_FALSE(PI::internal::add_focused_point(p, 0.3 + 1e-12)); // already sampled
+  CHECK_FALSE(PI::internal::add_focused_point(p, 0.5 - 1e-12));
+  CHECK_FALSE(PI::internal::add_focused_point(p, 1.));
+  CHECK(p.t.size() == 6);
+  CHECK_FALSE(PI::internal::add_focused_point(p, 0.));
 }
 
 TEST_CASE("untangling skips models with more patches or control points to optimise than allowed", "[untangling]")

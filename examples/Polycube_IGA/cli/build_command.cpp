@@ -106,6 +106,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("untangling_passes", V.untangling.passes)
       .member("untangling_stalled", V.untangling.stalled)
       .member("untangling_sliding_points", V.untangling.sliding_points)
+      .member("untangling_focused_samples", V.untangling.focused_samples)
       .member("untangling_work", model.untangling_work)
       .member("untangling_budget_exhausted", model.untangling_budget_exhausted)
       .member("relaxation_attempted", model.relaxation_attempted)
@@ -236,7 +237,7 @@ int run_build(const Arguments& args)
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
                       "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--min-degree", "--relax-sweeps", "--stretch-rounds", "--fold-bending",
                       "--sharp-boundary-turn", "--belt-phases", "--relax-arcs", "--relocate-nodes", "--relocation-retry", "--cut-pair-trials", "--missing-part-cubes",
-                      "--small-handle-length", "--untangling-budget", "--polycube-first-alignment", "--polycube-relax-arcs"});
+                      "--small-handle-length", "--untangling-budget", "--focused-samples", "--polycube-first-alignment", "--polycube-relax-arcs"});
   a.expect_positional(1, "one mesh file: polycube_iga build MESH -o OUT.xml");
   const std::string out = a.get("-o");
   if(out.empty()) throw PI::Invalid_input_error("bad_arguments", "build needs -o OUT.xml");
@@ -267,6 +268,7 @@ int run_build(const Arguments& args)
     a.get("--untangling-budget", "") == "inf"
       ? std::numeric_limits<double>::infinity()
       : 1e9 * fraction_option(a, "--untangling-budget", PI::default_untangling_budget / 1e9, 1e-6, 1e12);
+  const int focused_rounds = positive_option(a, "--focused-samples", 4, 0, 100);
   const bool verbose = !a.has("--quiet") && isatty(2);
   auto progress = [&](const std::string& stage) {
     if(verbose) std::cerr << "polycube_iga: " << stage << "...\n";
@@ -293,7 +295,7 @@ int run_build(const Arguments& args)
       .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid).minimum_spline_degree(min_degree)
       .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).fold_bending_weight(fold_bending).sharp_boundary_turn(sharp_turn).belt_phases(belt_phases)
       .step_retry(!a.has("--no-step-retry")).sphere_chain(!a.has("--no-chain")).orthogonal_blocks(!a.has("--no-blocks")).polycube_map(a.has("--polycube")).polycube_retry(!a.has("--no-polycube-retry")).polycube_first_alignment(polycube_first).arc_relaxation_sweeps(arc_sweeps).polycube_arc_relaxation_sweeps(polycube_arc_sweeps).node_relocation_sweeps(node_sweeps).node_relocation_retry(retry_sweeps).cut_pair_trials(pair_trials)
-      .missing_part_cubes(missing_part_cubes).balance_pants_corners(a.has("--balance-corners")).untangling_budget(untangling_budget)
+      .missing_part_cubes(missing_part_cubes).balance_pants_corners(a.has("--balance-corners")).untangling_budget(untangling_budget).focused_sample_rounds(focused_rounds)
       // An invalid volume is not written without --allow-invalid: no time spent improving it.
       .untangle_invalid_result(a.has("--allow-invalid")),
     progress);
@@ -370,7 +372,8 @@ Register_command build_command("build", {
   "                          [--polycube-relax-arcs K]\n"
   "                          [--relocate-nodes K] [--relocation-retry K] [--cut-pair-trials K]\n"
   "                          [--missing-part-cubes K] [--small-handle-length F] [--no-untangle]\n"
-  "                          [--untangling-budget G] [--balance-corners] [--allow-invalid]\n"
+  "                          [--untangling-budget G] [--focused-samples K] [--balance-corners]\n"
+  "                          [--allow-invalid]\n"
   "  -o OUT.xml        the multipatch volume in G+Smo XML (patches, interfaces, boundaries)\n"
   "  --vtu OUT.vtu     sampled hexahedra with det J and patch id, for ParaView\n"
   "  --layout-vtu L    the polycube layout on the surface: patches, arcs, nodes\n"
@@ -454,6 +457,10 @@ Register_command build_command("build", {
   "                    retries included, may visit (default 10, about 12 minutes on 2 cores;\n"
   "                    inf: no limit); once spent it stops, and the report says so\n"
   "                    (untangling_work, untangling_budget_exhausted)\n"
+  "  --focused-samples K  rounds in which a patch whose det J is positive at every sample but\n"
+  "                    not certified gets a sample where its certificate's bound is lowest\n"
+  "                    (default 4; 0: none); the report counts them\n"
+  "                    (untangling_focused_samples)\n"
   "  --small-handle-length F  close first every handle whose shortest handle or tunnel loop is\n"
   "                    shorter than F times the bounding-box diagonal (topological noise of a\n"
   "                    scan: no grid resolves it); the volume must still be within --max-distance\n"

@@ -23,6 +23,7 @@
 
 #include <CGAL/Polycube_IGA/Boundary_distance.h>
 #include <CGAL/Polycube_IGA/Bspline_volume_construction.h>
+#include <CGAL/Polycube_IGA/Errors.h>
 #include <CGAL/Polycube_IGA/Grid_relaxation.h>
 #include <CGAL/Polycube_IGA/Layout_chains.h>
 #include <CGAL/Polycube_IGA/Layout_padding.h>
@@ -497,6 +498,9 @@ Layout_volume_options layout_volume_options(const NamedParameters& np, Layout_vo
   base.boundary_layer = option(np, internal_np::boundary_layer, base.boundary_layer);
   base.maximum_cuboid_aspect = option(np, internal_np::maximum_cuboid_aspect, base.maximum_cuboid_aspect);
   base.untangle = option(np, internal_np::untangle_volume, base.untangle);
+  base.untangling.focused_sample_rounds = int(option(np, internal_np::focused_sample_rounds, base.untangling.focused_sample_rounds));
+  if(base.untangling.focused_sample_rounds < 0)
+    throw Invalid_input_error("invalid_parameter", "focused_sample_rounds must not be negative");
   base.relaxation.maximum_sweeps = int(option(np, internal_np::grid_relaxation_sweeps, base.relaxation.maximum_sweeps));
   return base;
 }
@@ -505,7 +509,8 @@ Layout_volume_options layout_volume_options(const NamedParameters& np, Layout_vo
  * Named-parameter form: `grid_resolution` (N, default 16), `smooth_interior_patches`
  * (true), `spline_degree` (3), `number_of_spans` (max(1, N/4)), `stretching_weight` (0),
  * `bending_weight` (1e-6), `data_weight` (1), `boundary_layer` (0: none),
- * `maximum_cuboid_aspect` (0: no chains) and `untangle_volume` (false)
+ * `maximum_cuboid_aspect` (0: no chains), `untangle_volume` (false) and
+ * `focused_sample_rounds` (4, Volume_untangling_options)
  * override the fields of `base`.
  * Example: `layout_volume(layout, parameters::grid_resolution(32).spline_degree(2))`.
  */

@@ -53,10 +53,31 @@ struct Volume_untangling_options
 {
   /// Gauss-Lobatto points per span and direction, ends included (2..5). det J can be
   /// positive at every sample and negative between, so patches the Bernstein bound does not
-  /// certify take part too, and those still uncertified get more points (up to 5) at the
-  /// end. With 4 from the start, every round costs (13/9)^3 = 3 times as much: eight.off,
-  /// double-torus-example.off and 3holes.obj untangle 2 to 3 times slower, and no better.
+  /// certify take part too, and those still uncertified get more points (up to
+  /// maximum_points_per_span), then focused samples, at the end. With 4 from the start,
+  /// every round costs (13/9)^3 = 3 times as much: eight.off, double-torus-example.off and
+  /// 3holes.obj untangle 2 to 3 times slower, and no better.
   int points_per_span = 3;
+  /// The most Gauss-Lobatto points per span the patches still uncertified get (up to 5).
+  int maximum_points_per_span = 5;
+  /// Rounds of focused samples once the densest Gauss-Lobatto samples are not enough: each
+  /// adds, to every patch still not certified, one sample per direction where the Bernstein
+  /// bound of its det J is lowest (Jacobian_bound::lower_bound_at), and the rounds go on.
+  /// A fold between the Gauss-Lobatto points is then seen by the energy: the CAD plate with
+  /// six holes of the unseen corpus, left with one such patch at degree 3 (det J -0.0076
+  /// between samples), is then valid at its first grid (247 s instead of 698 s for a
+  /// quadratic volume at 8 samples). 0: none.
+  int focused_sample_rounds = 4;
+  /// Focusing stops, before its rounds, when a new sample has det(J W^-1) below this (W the
+  /// patch's mean Jacobian): not a shallow dip between samples but a fold they missed
+  /// outright. Such rounds certified nothing in our runs and were most of the focusing's
+  /// cost (pinion.off: 25 patches, -3.98 at the new samples, still -0.20 and 26 patches
+  /// after 0.58 billion samples, the run 1.46 times as long; a femur's and mushroom.off's
+  /// failing grids of the tests began at -0.6 to -1); every round that helped began above
+  /// -0.35. Focusing also stops after two rounds in a row that did not leave fewer patches
+  /// uncertified than any round before (it can take one such round: the plate above goes
+  /// 1, 1, 0).
+  double focused_sample_floor = -0.5;
   double volume_weight = 0.25; ///< theta: weight of the volume term against the shape term
   /// Patches with a sampled scaled Jacobian below this (at Gauss points and span corners),
   /// or with det J not certified positive, are optimised, with their interface neighbours.
@@ -138,6 +159,9 @@ struct Volume_untangling_result
   double work = 0.;
   /// Optimised patches whose det J is not certified positive afterwards.
   std::vector<std::size_t> uncertified_patches;
+  /// Samples added where the certificate's bound was lowest
+  /// (Volume_untangling_options::focused_sample_rounds).
+  std::size_t focused_samples = 0;
   int passes = 1; ///< untangle_volume() calls merged here (add_pass())
 
   /// Merges `next`, a later call on the same volume that was not skipped nor reverted.
@@ -154,6 +178,7 @@ struct Volume_untangling_result
     stalled = stalled || next.stalled;
     out_of_budget = out_of_budget || next.out_of_budget;
     work += next.work;
+    focused_samples += next.focused_samples;
     min_relative_determinant_after = next.min_relative_determinant_after;
     positive_at_samples = next.positive_at_samples;
     pinned_patches = next.pinned_patches;
@@ -190,10 +215,16 @@ inline Direction_samples direction_samples(const Knot_vector& kv, const std::vec
   return s;
 }
 
-/// Samples of one direction: Gauss-Lobatto points of every span (its ends and q - 2 inner
-/// points; weights sum to the span lengths). The ends matter: det J is often smallest on
-/// the boundary sides and at span joints.
-inline Direction_samples span_samples_with_ends(const Knot_vector& kv, int q)
+/// Parameters of one direction's samples, ascending, and their quadrature weights.
+struct Span_points
+{
+  std::vector<double> t, w;
+};
+
+/// Gauss-Lobatto points of every span (its ends and q - 2 inner points; weights sum to the
+/// span lengths). The ends matter: det J is often smallest on the boundary sides and at
+/// span joints.
+inline Span_points span_points_with_ends(const Knot_vector& kv, int q)
 {
   q = std::min(std::max(q, 2), 5);
   const double a = std::sqrt(0.2), b = std::sqrt(3. / 7.);
@@ -201,18 +232,38 @@ inline Direction_samples span_samples_with_ends(const Knot_vector& kv, int q)
   static const std::vector<double> gw[4] = {{1., 1.}, {1. / 3., 4. / 3., 1. / 3.}, {1. / 6., 5. / 6., 5. / 6., 1. / 6.},
                                             {0.1, 49. / 90., 32. / 45., 49. / 90., 0.1}};
   const std::vector<double>&x = gx[q - 2], &xw = gw[q - 2];
-  std::vector<double> t, w;
+  Span_points p;
   const std::vector<double> br = kv.breaks();
   for(std::size_t s = 0; s + 1 < br.size(); ++s) {
     const double mid = 0.5 * (br[s] + br[s + 1]), half = 0.5 * (br[s + 1] - br[s]);
     if(!(half > 0.)) continue;
     for(std::size_t k = 0; k < x.size(); ++k) {
-      if(k == 0 && !t.empty()) { w.back() += half * xw[k]; continue; } // shared span end
-      t.push_back(k + 1 == x.size() ? br[s + 1] : k == 0 ? br[s] : mid + half * x[k]);
-      w.push_back(half * xw[k]);
+      if(k == 0 && !p.t.empty()) { p.w.back() += half * xw[k]; continue; } // shared span end
+      p.t.push_back(k + 1 == x.size() ? br[s + 1] : k == 0 ? br[s] : mid + half * x[k]);
+      p.w.push_back(half * xw[k]);
     }
   }
-  return direction_samples(kv, t, w);
+  return p;
+}
+
+/// Adds a sample at `u` weighing a quarter of the lightest one, unless one lies within
+/// 1e-9: a point the energy must see, not a quadrature node (the weights then no longer
+/// sum to the span lengths, by a small share). Returns whether it was added.
+inline bool add_focused_point(Span_points& p, double u)
+{
+  const auto at = std::lower_bound(p.t.begin(), p.t.end(), u);
+  if((at != p.t.end() && *at - u < 1e-9) || (at != p.t.begin() && u - *(at - 1) < 1e-9)) return false;
+  const double weight = 0.25 * *std::min_element(p.w.begin(), p.w.end());
+  p.w.insert(p.w.begin() + (at - p.t.begin()), weight);
+  p.t.insert(at, u);
+  return true;
+}
+
+/// Samples of one direction at Gauss-Lobatto points (span_points_with_ends()).
+inline Direction_samples span_samples_with_ends(const Knot_vector& kv, int q)
+{
+  const Span_points p = span_points_with_ends(kv, q);
+  return direction_samples(kv, p.t, p.w);
 }
 
 /// Sizes shared by patch_jacobians() and its adjoint: samples q and non-zero functions P per
@@ -754,17 +805,20 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
       }
     }
   };
+  auto moved_patch = [&](std::size_t c) { // patch c with its current points (after load())
+    const Tensor_bspline_volume& v = mv.patch(c);
+    return Tensor_bspline_volume({{v.knot_vector(0), v.knot_vector(1), v.knot_vector(2)}}, points[c]);
+  };
   // Per optimised patch: certified det J > 0 with the current points (a non-positive
   // sample on the first sample grid rules a certificate out, and the bound is costly there).
-  auto certified_with = [&](std::size_t c, const std::vector<Vector3d>& P) {
-    const Tensor_bspline_volume& v = mv.patch(c);
-    const Tensor_bspline_volume w({{v.knot_vector(0), v.knot_vector(1), v.knot_vector(2)}}, P);
+  auto certified_now = [&](std::size_t c) {
+    const Tensor_bspline_volume w = moved_patch(c);
     return internal::sampled_scaled_jacobian(w, first_samples[c]) > 0. && certified_jacobian_bound(w).certified_positive;
   };
   auto uncertified_patches = [&] {
     load(x);
     std::vector<char> ok(r.patches.size(), 0);
-    internal::parallel_for(r.patches.size(), threads, [&](std::size_t t, unsigned) { ok[t] = certified_with(r.patches[t], points[r.patches[t]]); });
+    internal::parallel_for(r.patches.size(), threads, [&](std::size_t t, unsigned) { ok[t] = certified_now(r.patches[t]); });
     std::vector<std::size_t> u;
     for(std::size_t t = 0; t < r.patches.size(); ++t)
       if(!ok[t]) u.push_back(r.patches[t]);
@@ -788,21 +842,65 @@ inline Volume_untangling_result untangle_volume(Multipatch_volume& mv,
   run_rounds();
   // Samples are not a certificate: det J can dip below 0 between them (3holes.obj: one core
   // positive at every sample, negative between). Once every sample is positive, the patches
-  // still not certified get one more Gauss-Lobatto point per span (up to 5) and the rounds
-  // go on from there.
+  // still not certified get one more Gauss-Lobatto point per span (up to
+  // maximum_points_per_span, 5) and the rounds go on from there.
   std::vector<std::size_t> uncertified = uncertified_patches();
-  for(int q = o.points_per_span + 1; q <= 5 && min_det > 0. && !r.out_of_budget; ++q) {
-    std::vector<std::size_t> denser;
-    for(std::size_t c : uncertified)
-      if(std::find(r.pinned_patches.begin(), r.pinned_patches.end(), c) == r.pinned_patches.end()) denser.push_back(c);
+  auto not_pinned = [&](const std::vector<std::size_t>& patches) {
+    std::vector<std::size_t> u;
+    for(std::size_t c : patches)
+      if(std::find(r.pinned_patches.begin(), r.pinned_patches.end(), c) == r.pinned_patches.end()) u.push_back(c);
+    return u;
+  };
+  // Per patch and direction, the parameters it is sampled at from here on (empty: the
+  // first samples; a patch first uncertified at focusing starts from the densest ones).
+  std::vector<std::array<internal::Span_points, 3>> points_at(np);
+  const int densest = std::min(std::max(o.points_per_span, o.maximum_points_per_span), 5);
+  for(int q = o.points_per_span + 1; q <= densest && min_det > 0. && !r.out_of_budget; ++q) {
+    const std::vector<std::size_t> denser = not_pinned(uncertified);
     if(denser.empty()) break;
     for(std::size_t c : denser) {
-      for(int d = 0; d < 3; ++d) samples[c][std::size_t(d)] = internal::span_samples_with_ends(mv.patch(c).knot_vector(d), q);
+      for(std::size_t d = 0; d < 3; ++d) {
+        const Knot_vector& kv = mv.patch(c).knot_vector(int(d));
+        points_at[c][d] = internal::span_points_with_ends(kv, q);
+        samples[c][d] = internal::direction_samples(kv, points_at[c][d].t, points_at[c][d].w);
+      }
       update_movable(c);
     }
     min_det = measure(x).movable;
     run_rounds();
     uncertified = uncertified_patches();
+  }
+  // A fold can hide between even 5 points per span (cad_plate_6holes.off at degree 3: one
+  // patch, every sample positive, det J -0.0076 between). The certificate names the point
+  // near which its bound is lowest; one more sample there per direction lets the energy see
+  // the fold.
+  std::size_t fewest = uncertified.size();
+  for(int round = 0, idle = 0; round < o.focused_sample_rounds && idle < 2 && min_det > 0. && !r.out_of_budget; ++round) {
+    const std::vector<std::size_t> focus = not_pinned(uncertified);
+    if(focus.empty()) break;
+    load(x);
+    std::vector<Jacobian_bound> bound(focus.size());
+    internal::parallel_for(focus.size(), threads, [&](std::size_t t, unsigned) { bound[t] = certified_jacobian_bound(moved_patch(focus[t])); });
+    std::size_t added = 0;
+    for(std::size_t t = 0; t < focus.size(); ++t) {
+      const std::size_t c = focus[t];
+      for(std::size_t d = 0; d < 3; ++d) {
+        const Knot_vector& kv = mv.patch(c).knot_vector(int(d));
+        if(points_at[c][d].t.empty()) points_at[c][d] = internal::span_points_with_ends(kv, densest);
+        if(!internal::add_focused_point(points_at[c][d], bound[t].lower_bound_at[d])) continue;
+        samples[c][d] = internal::direction_samples(kv, points_at[c][d].t, points_at[c][d].w);
+        ++added;
+      }
+      update_movable(c);
+    }
+    if(added == 0) break; // every lowest point is sampled already
+    r.focused_samples += added;
+    min_det = measure(x).movable;
+    if(min_det < o.focused_sample_floor) break;
+    run_rounds();
+    uncertified = uncertified_patches();
+    idle = uncertified.size() < fewest ? 0 : idle + 1;
+    fewest = std::min(fewest, uncertified.size());
   }
   samples = first_samples; // the figures below compare like with like
   for(std::size_t c : r.patches) update_movable(c);

@@ -61,6 +61,7 @@ namespace Polycube_IGA {
   X(maximum_cuboid_aspect_t, maximum_cuboid_aspect)                                 \
   X(untangle_volume_t, untangle_volume)                                             \
   X(untangle_invalid_result_t, untangle_invalid_result)                             \
+  X(focused_sample_rounds_t, focused_sample_rounds)                                 \
   X(grid_relaxation_sweeps_t, grid_relaxation_sweeps)                               \
   X(maximum_boundary_distance_t, maximum_boundary_distance)                         \
   X(maximum_grid_resolution_t, maximum_grid_resolution)                             \
