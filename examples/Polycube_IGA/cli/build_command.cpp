@@ -268,7 +268,7 @@ int run_build(const Arguments& args)
     a.get("--untangling-budget", "") == "inf"
       ? std::numeric_limits<double>::infinity()
       : 1e9 * fraction_option(a, "--untangling-budget", PI::default_untangling_budget / 1e9, 1e-6, 1e12);
-  const int focused_rounds = positive_option(a, "--focused-samples", 4, 0, 100);
+  const int focused_rounds = positive_option(a, "--focused-samples", PI::Volume_untangling_options().focused_sample_rounds, 0, 100);
   const bool verbose = !a.has("--quiet") && isatty(2);
   auto progress = [&](const std::string& stage) {
     if(verbose) std::cerr << "polycube_iga: " << stage << "...\n";
