@@ -1041,6 +1041,9 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   if(!(first_alignment >= 0.)) throw Invalid_input_error("invalid_parameter", "polycube_first_alignment must not be negative or NaN");
   std::optional<Model> polycube_attempt; // the polycube map's volume, tried first or retried, not valid
   std::string polycube_failure;
+  // What the run's other layouts gave (the polycube map tried first or again, the nodes
+  // relocated): said by the genus layout's model and, when another attempt is kept, by it.
+  std::vector<std::string> run_record;
   if(closed && !polycube_given && first_alignment <= 1.) {
     const auto [alignment, axis_aligned] = Cuboid_decomposition<TriangleMesh>::polycube_alignment(tm);
     if(!axis_aligned && alignment >= first_alignment) {
@@ -1076,6 +1079,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     kept->polycube_first = model.polycube_first;
     kept->polycube_retried = model.polycube_retried;
     kept->relocation_retried = model.relocation_retried;
+    kept->warnings.insert(kept->warnings.begin(), run_record.begin(), run_record.end());
     kept->warnings.insert(kept->warnings.begin(), "no attempt gave a valid volume; the one kept is the nearest to valid, on " + kept_name +
                                                       " (" + internal::volume_shortfall(kept->volume) + "); on " + genus_layout + ": " +
                                                       internal::volume_shortfall(model.volume));
@@ -1085,11 +1089,12 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     model.polycube_first = true;
     if(polycube_attempt) {
       internal::prepend_stage_seconds(model.stage_seconds, polycube_attempt->stage_seconds, ", polycube map first");
-      model.warnings.insert(model.warnings.begin(), "a layout on a polycube map (" + std::to_string(polycube_attempt->layout.cuboids.size()) +
-                                                      " boxes) was tried first and gave no valid volume (" +
-                                                      internal::comma_list(polycube_attempt->invalidity_reasons()) + ")");
+      run_record.push_back("a layout on a polycube map (" + std::to_string(polycube_attempt->layout.cuboids.size()) +
+                           " boxes) was tried first and gave no valid volume (" +
+                           internal::comma_list(polycube_attempt->invalidity_reasons()) + ")");
     } else
-      model.warnings.insert(model.warnings.begin(), "a layout on a polycube map was tried first and failed: " + polycube_failure);
+      run_record.push_back("a layout on a polycube map was tried first and failed: " + polycube_failure);
+    model.warnings.insert(model.warnings.begin(), run_record.back());
   }
   if(model.is_valid()) return finished(model);
   // A closed surface whose layout crosses the shape's own directions (a CAD part's round
@@ -1100,7 +1105,6 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     model.polycube_retried = true;
     std::string failure;
     std::optional<Model> other = on_polycube_map(failure);
-    if(!failure.empty()) model.warnings.push_back("a layout on a polycube map was tried too and failed: " + failure);
     if(other && other->is_valid()) {
       other->polycube_retried = true;
       other->warnings.insert(other->warnings.begin(), "laid out on a polycube map (" + std::to_string(other->layout.cuboids.size()) +
@@ -1111,10 +1115,12 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     }
     if(other) {
       internal::append_stage_seconds(model.stage_seconds, other->stage_seconds, ", polycube map");
-      model.warnings.push_back("a layout on a polycube map (" + std::to_string(other->layout.cuboids.size()) +
-                               " boxes) was tried too and gave no valid volume (" + internal::comma_list(other->invalidity_reasons()) + ")");
+      run_record.push_back("a layout on a polycube map (" + std::to_string(other->layout.cuboids.size()) +
+                           " boxes) was tried too and gave no valid volume (" + internal::comma_list(other->invalidity_reasons()) + ")");
       polycube_attempt = std::move(other);
-    }
+    } else
+      run_record.push_back("a layout on a polycube map was tried too and failed: " + (failure.empty() ? std::string("it made no layout") : failure));
+    model.warnings.push_back(run_record.back());
   }
   if(retry_sweeps == 0 || option(np, internal_np::node_relocation_sweeps, 0) > 0) return nearest_attempt(nullptr);
   // The decomposition puts nodes where the harmonic cuts and the conformal map say, blind to
@@ -1147,9 +1153,9 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     return finished(*other);
   }
   internal::append_stage_seconds(model.stage_seconds, other->stage_seconds, ", nodes relocated");
-  model.warnings.push_back("the layout's nodes relocated (" + std::to_string(other->node_relocation.nodes_moved) +
-                           " moves) were tried too and gave no valid volume (" +
-                           internal::comma_list(other->invalidity_reasons()) + ")");
+  run_record.push_back("the layout's nodes relocated (" + std::to_string(other->node_relocation.nodes_moved) +
+                       " moves) were tried too and gave no valid volume (" + internal::comma_list(other->invalidity_reasons()) + ")");
+  model.warnings.push_back(run_record.back());
   return nearest_attempt(&*other);
 }
 

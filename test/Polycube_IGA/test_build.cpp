@@ -870,10 +870,35 @@ TEST_CASE("build keeps the attempt nearest a valid volume when none is valid: th
     CHECK(first.find("no attempt gave a valid volume; the one kept is the nearest to valid, on the polycube map's boxes (0 of 42 "
                      "patches uncertified") == 0);
     CHECK(first.find("; on the sphere layout: ") != std::string::npos);
+    // Then what the polycube map gave, as the genus layout's model said it.
+    REQUIRE(model.warnings.size() > 1);
+    CHECK(model.warnings[1].find(std::string("a layout on a polycube map (4 boxes) was tried ") + (first_alignment < 1. ? "first" : "too") +
+                                 " and gave no valid volume (boundary_distance)") == 0);
     // The run's record: the chain's stages are there too.
     CHECK(std::any_of(model.stage_seconds.begin(), model.stage_seconds.end(),
                       [](const auto& s) { return s.first.find("polycube map") != std::string::npos; }));
   }
+}
+
+TEST_CASE("build's kept attempt says what the run's other layouts gave: the rotor's relocated nodes name its refused polycube map", "[build][polycube]")
+{
+  // rotor.off (a cup-shaped wheel with two bosses on its rim, genus 1) on one grid without
+  // untangling: no attempt is valid, and its relocated nodes are nearest. Their model said
+  // nothing of the polycube map the run tried before them, which the genus layout's model
+  // recorded: a user saw two of the three attempts.
+  const Mesh m = load(data("rotor.off"));
+  const auto quick = PI::parameters::maximum_grid_resolution(16).minimum_grid_resolution(16).minimum_spline_degree(3).untangle_volume(false)
+                       .grid_relaxation_sweeps(0).stretch_rounds(0).fold_bending_weight(0.);
+  const auto model = PI::build_trivariate_model(m, quick);
+  CHECK(!model.is_valid());
+  CHECK(model.polycube_retried);
+  CHECK(model.relocation_retried);
+  REQUIRE(model.warnings.size() >= 3);
+  CHECK(model.warnings[0].find("no attempt gave a valid volume; the one kept is the nearest to valid, on the torus layout with its nodes relocated") == 0);
+  CHECK(model.warnings[1].find("a layout on a polycube map was tried too and failed: no_polycube_map") == 0);
+  CHECK(model.warnings[2].find("the layout's nodes relocated (") == 0);
+  // Each said once.
+  CHECK(std::count_if(model.warnings.begin(), model.warnings.end(), [](const std::string& w) { return w.find("polycube map") != std::string::npos; }) == 1);
 }
 
 TEST_CASE("nearer_valid() ranks invalid volumes on different layouts: within the distance first, then the share uncertified or the distance", "[build]")
