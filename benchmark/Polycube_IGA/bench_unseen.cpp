@@ -14,10 +14,11 @@
 //     with the edges whose faces meet at over 50 degrees, the border edges, and the
 //     vertices where such edges do not pass straight through kept as constraints, so the
 //     shape is the same and every triangle (hence every map, cut and arc) new;
-//   - a second corpus of new shapes, benchmark/Polycube_IGA/data (README there): 9 CAD
+//   - a second corpus of new shapes, benchmark/Polycube_IGA/data (README there): 12 CAD
 //     parts (a flange with bolt holes, an L bracket, a mug, a solid tee, a bent thick pipe,
 //     a box with three holes, a cube with crossing holes, a stepped shaft, a plate with six
-//     holes) and 8 smooth shapes (a limbed blob, a pretzel, three tori, a twisted torus, a
+//     holes, and turned parts: a flanged bushing, a grooved pulley, a five-spoke wheel of
+//     genus 6) and 8 smooth shapes (a limbed blob, a pretzel, three tori, a twisted torus, a
 //     banana, plates with four and six holes, four tori in a square), genus 0 to 6, as
 //     they are.
 // A remeshed surface is validated as `build` validates a file (a remeshing that makes
@@ -90,7 +91,8 @@ const Unseen_case cases[] = {
   {"bench:org_triple_torus_genus3.off", 0, true}, {"bench:org_twisted_torus.off", 0, true},
   {"bench:org_banana.off", 0, true},         {"bench:org_plate_4holes.off", 0, true},
   {"bench:cad_plate_6holes.off", 0, false},  {"bench:org_plate_6holes.off", 0, true},
-  {"bench:org_quad_torus_genus4.off", 0, true},
+  {"bench:org_quad_torus_genus4.off", 0, true}, {"bench:cad_flanged_bushing.off", 0, true},
+  {"bench:cad_pulley_vgroove.off", 0, true}, {"bench:cad_spoked_wheel.off", 0, false},
 };
 
 /// The CAD blocks, as unit cubes (x, y, z): each a plate extruded from an orthogonal polygon.

@@ -134,6 +134,55 @@ def plate6holes():
     try_fillet(v, corners, 0.5)
     o.synchronize()
 
+def flanged_bushing():
+    # added Dec 2026 (turned parts): tube r 1.0..1.5, length 4 along z, flange r=2.6 t=0.5 at z=0
+    o = occ()
+    t = o.addCylinder(0, 0, 0, 0, 0, 4, 1.5)
+    f = o.addCylinder(0, 0, 0, 0, 0, 0.5, 2.6)
+    r, _ = o.fuse([(3, t)], [(3, f)])
+    bore = o.addCylinder(0, 0, -1, 0, 0, 6, 1.0)
+    r, _ = o.cut(r, [(3, bore)])
+    o.synchronize()
+    v = r[0][1]
+    # the concave tube-flange junction: the circle r=1.5 at z=0.5
+    junction = circle_edges_where(v, lambda bb: abs(bb[3] - bb[0] - 3.0) < 1e-3 and abs(bb[2] - 0.5) < 1e-6)
+    assert len(junction) == 1, junction
+    v = try_fillet(v, junction, 0.2)
+    o.synchronize()
+    # the flange's outer rims: the circles r=2.6 at z=0 and z=0.5
+    rims = circle_edges_where(v, lambda bb: abs(bb[3] - bb[0] - 5.2) < 1e-3)
+    assert len(rims) == 2, rims
+    try_fillet(v, rims, 0.1)
+    o.synchronize()
+
+def pulley_vgroove():
+    # added Dec 2026 (turned parts): closed (r, z) profile revolved 2*pi about z; r=3, width 2 (z -1..1),
+    # V-groove 0.8 deep (flat bottom 0.3 wide at r=2.2, 0.9 wide at r=3), bore r=0.8,
+    # annular pockets r 1.3..2.3, 0.4 deep on both faces (I/H cross-section)
+    o = occ()
+    prof = [(0.8, -1), (1.3, -1), (1.3, -0.6), (2.3, -0.6), (2.3, -1), (3.0, -1), (3.0, -0.45), (2.2, -0.15),
+            (2.2, 0.15), (3.0, 0.45), (3.0, 1), (2.3, 1), (2.3, 0.6), (1.3, 0.6), (1.3, 1), (0.8, 1)]
+    pts = [o.addPoint(x, 0, z) for x, z in prof]
+    lines = [o.addLine(pts[i], pts[(i + 1) % len(pts)]) for i in range(len(pts))]
+    s = o.addPlaneSurface([o.addCurveLoop(lines)])
+    o.revolve([(2, s)], 0, 0, 0, 0, 0, 1, 2 * PI)
+    o.remove([(2, s)], recursive=True)
+    o.synchronize()
+
+def spoked_wheel():
+    # added Dec 2026 (turned parts): rim r 3.0..3.5 (width 1), hub r 0.5..1.0 (width 1.2), 5 round spokes r=0.25
+    # from r=0.75 (inside the hub) to r=3.25 (inside the rim), fused; junctions left sharp
+    o = occ()
+    rim, _ = o.cut([(3, o.addCylinder(0, 0, -0.5, 0, 0, 1, 3.5))], [(3, o.addCylinder(0, 0, -1, 0, 0, 2, 3.0))])
+    hub, _ = o.cut([(3, o.addCylinder(0, 0, -0.6, 0, 0, 1.2, 1.0))], [(3, o.addCylinder(0, 0, -1, 0, 0, 2, 0.5))])
+    spokes = []
+    for k in range(5):
+        a = 2 * PI * k / 5
+        c, s_ = math.cos(a), math.sin(a)
+        spokes.append((3, o.addCylinder(0.75 * c, 0.75 * s_, 0, 2.5 * c, 2.5 * s_, 0, 0.25)))
+    r, _ = o.fuse(rim, hub + spokes)
+    o.synchronize()
+
 SHAPES = [
     ('cad_flange_5holes', flange, 'disk r=5 t=1, central hole + 4 bolt holes, outer rims filleted', 0.3),
     ('cad_L_bracket_2holes', lbracket, 'L bracket (two 6x4x1 legs) with one round hole per leg, inner corner filleted', 0.3),
@@ -144,6 +193,9 @@ SHAPES = [
     ('cad_cube_cross_holes', cross_holes, 'cube 4^3 with crossing through-holes along x (r=.8) and y (r=.6)', 0.3),
     ('cad_stepped_shaft', shaft, '3 coaxial cylinders r=2/1.4/0.9 fused, end rims filleted', 0.3),
     ('cad_plate_6holes', plate6holes, 'plate 9x6x1 with 6 through-holes r=0.7 (3x2), vertical edges filleted r=0.5', 0.3),
+    ('cad_flanged_bushing', flanged_bushing, 'tube r 1.0..1.5 L=4 with flange r=2.6 t=0.5, junction filleted r=0.2, flange rims r=0.1', 0.23),
+    ('cad_pulley_vgroove', pulley_vgroove, 'pulley r=3 w=2 revolved from an I/H profile: V-groove 0.8 deep, bore r=0.8, hub pockets', 0.26),
+    ('cad_spoked_wheel', spoked_wheel, 'rim r 3..3.5 + hub r 0.5..1 joined by 5 round spokes r=0.25, sharp junctions', 0.2),
 ]
 
 if __name__ == '__main__':
