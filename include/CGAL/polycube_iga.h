@@ -1118,8 +1118,8 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
       run_record.push_back("a layout on a polycube map (" + std::to_string(other->layout.cuboids.size()) +
                            " boxes) was tried too and gave no valid volume (" + internal::comma_list(other->invalidity_reasons()) + ")");
       polycube_attempt = std::move(other);
-    } else
-      run_record.push_back("a layout on a polycube map was tried too and failed: " + (failure.empty() ? std::string("it made no layout") : failure));
+    } else // empty only when it threw: build_on_layout() returns none for relocation variants alone
+      run_record.push_back("a layout on a polycube map was tried too and failed: " + failure);
     model.warnings.push_back(run_record.back());
   }
   if(retry_sweeps == 0 || option(np, internal_np::node_relocation_sweeps, 0) > 0) return nearest_attempt(nullptr);
