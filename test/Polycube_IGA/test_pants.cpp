@@ -16,6 +16,7 @@
 #include <CGAL/Polycube_IGA/Pants_decomposition.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include <catch2/catch.hpp>
@@ -197,6 +198,42 @@ TEST_CASE("the cuts of a plate with holes are meridians of its bars", "[pants][p
   const Pants::Result greedy = Pants()(m, PIP::cut_pair_trials(1));
   check_pants(m, greedy, 5, 0);
   CHECK(longest_handle_and_cut(greedy).second > 3 * handle);
+}
+
+TEST_CASE("the cycles of a wheel cut its spokes and rim midway between junctions", "[pants][centre]")
+{
+  // wheel3.off: a rim and a hub joined by three round spokes at 17, 137 and 257 degrees
+  // (spokes from radius 0.8 to 2.6, the rim from 2.6 to 3). Shortest cycles ran where the
+  // mesh has rings of edges, beside the junctions (rim cuts 2 to 9 degrees from a spoke, a
+  // spoke's loop at its rim end), and the pants there had no room for a centre cuboid;
+  // moved to the middle of their tubes, each rim cut is over 45 degrees from every spoke
+  // and each spoke's cycle lies along its middle half.
+  const Mesh m = load(data("wheel3.off"));
+  const Pants::Result r = Pants()(m);
+  check_pants(m, r, 3, 0);
+  check_cycles_bound_inside(m, r);
+  int on_rim = 0, on_spokes = 0;
+  for(const auto& c : r.cycles) {
+    double x = 0, y = 0;
+    for(const auto& p : c.points) { x += p[0]; y += p[1]; }
+    x /= double(c.points.size());
+    y /= double(c.points.size());
+    const double radius = std::hypot(x, y), angle = std::atan2(y, x) * 180 / CGAL_PI;
+    INFO("cycle at radius " << radius << ", angle " << angle);
+    if(radius > 2.6) {
+      ++on_rim;
+      for(double spoke : {17.19, 137.19, 257.19}) {
+        const double d = std::abs(std::remainder(angle - spoke, 360.));
+        CHECK(d > 45);
+      }
+    } else {
+      ++on_spokes;
+      CHECK(radius > 1.25);
+      CHECK(radius < 2.15);
+    }
+  }
+  CHECK(on_rim == 3);
+  CHECK(on_spokes == 3);
 }
 
 TEST_CASE("cut_pair_trials below 1 is rejected", "[pants][bad]")
