@@ -204,10 +204,10 @@ TEST_CASE("the cycles of a wheel cut its spokes and rim midway between junctions
 {
   // wheel3.off: a rim and a hub joined by three round spokes at 17, 137 and 257 degrees
   // (spokes from radius 0.8 to 2.6, the rim from 2.6 to 3). Shortest cycles ran where the
-  // mesh has rings of edges, beside the junctions (rim cuts 2 to 9 degrees from a spoke, a
-  // spoke's loop at its rim end), and the pants there had no room for a centre cuboid;
-  // moved to the middle of their tubes, each rim cut is over 45 degrees from every spoke
-  // and each spoke's cycle lies along its middle half.
+  // mesh has rings of edges, beside the junctions (the rim's cycles 2, 9 and 17 degrees
+  // from a spoke, two spokes' cycles at their rim ends), and the pants there had no room
+  // for a centre cuboid; moved to the middle of their tubes, each rim cycle is over 45
+  // degrees from every spoke and each spoke's cycle lies along its middle half.
   const Mesh m = load(data("wheel3.off"));
   const Pants::Result r = Pants()(m);
   check_pants(m, r, 3, 0);
