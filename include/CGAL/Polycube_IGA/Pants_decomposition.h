@@ -714,33 +714,7 @@ private:
         // Minimum cut in the dual graph of the region; edges touching a cycle are uncuttable.
         // The region is planar: a shortest separating cycle (separating_cycle_cut()); the
         // maximum flow where that does not apply.
-        const Cut_problem problem{g, w_cut, is_cut, on_cycle, pants_of, source, sink};
-        double value = separating_cycle_cut(problem, side);
-        if(value < infinity) {
-          // Among cuts of that weight, the one nearest the source (minimal source side): a flow
-          // inside the source side found, which holds it.
-          const std::vector<char> inside = side;
-          value = band_min_cut(problem, &inside, side);
-        }
-        if(!(value < infinity)) value = band_min_cut(problem, nullptr, side);
-        if(!(value < infinity)) return infinity;
-
-        // The cut edges must form one simple cycle.
-        std::vector<int> cut_edges;
-        for(int e = 0; e < g.number_of_edges(); ++e) {
-          const int f0 = g.edge_faces[e][0], f1 = g.edge_faces[e][1];
-          if(is_cut[e] || !in_region(f0) || !in_region(f1)) continue;
-          if(side[f0] != side[f1]) cut_edges.push_back(e);
-        }
-        if(!order_simple_cycle(g, cut_edges, new_cycle)) return infinity;
-        // Orient it with the pants (source side) on its left.
-        c = cycle_edges(g, new_cycle);
-        const int left = face_on_side(g, c, 0, 0);
-        if(!(in_region(left) && side[left])) {
-          std::reverse(new_cycle.begin(), new_cycle.end());
-          c = cycle_edges(g, new_cycle);
-        }
-        return value;
+        return trace_cut(Cut_problem{g, w_cut, is_cut, on_cycle, pants_of, source, sink}, side, new_cycle, c);
       };
       // The cuts of the `pair_trials` most promising pairs are traced, and the most
       // promising pair whose cut is within 10% of the lightest is taken. The estimate alone
@@ -790,9 +764,7 @@ private:
     patches.push_back({{holes[0].cycle, holes[1].cycle, holes[2].cycle}});
     std::vector<std::array<int, 3>> boundaries;
     for(const Patch& p : patches) boundaries.push_back(p.boundary);
-    if(result.boundary_loops == 0)
-      for(int sweep = 0; sweep < 2; ++sweep) // the second sees the cycles the first moved
-        centre_cycles(g, w, kinds, boundaries, centroid, cycles, pants_of, is_cut, on_cycle);
+    if(result.boundary_loops == 0) centre_cycles(g, w, kinds, boundaries, centroid, cycles, pants_of, is_cut, on_cycle);
 
     // Record the result; neighbours from the faces on either side of each cycle.
     result.cycles.clear();
@@ -854,116 +826,115 @@ private:
       for(int e : c.edges) l += weight[e];
       return l;
     };
-    for(std::size_t c = 0; c < cycles.size(); ++c) {
-      if(kinds[c] == Pants_cycle<TriangleMesh>::INPUT_BOUNDARY) continue;
-      const int left = face_on_side(g, cycles[c], 0, 0), right = face_on_side(g, cycles[c], 0, 1);
-      if(left >= nf || right >= nf) continue;
-      const int P = pants_of[left], Q = pants_of[right];
-      if(P == Q) continue; // a handle loop kept whole
-      // The union, the cycle opened; the other boundaries of P (u = 0) and of Q (u = 1).
-      std::vector<int> region_of(pants_of);
-      for(int& p : region_of) if(p == P || p == Q) p = -1;
-      std::vector<char> cut(is_cut), on(on_cycle);
-      for(int e : cycles[c].edges) cut[e] = 0;
-      for(int v : cycles[c].vertices) on[v] = 0;
-      std::vector<double> u(std::size_t(nv), -1.);
-      for(int side = 0; side < 2; ++side)
-        for(int b : boundaries[std::size_t(side == 0 ? P : Q)])
-          if(b != int(c)) for(int v : cycles[b].vertices) u[v] = double(side);
-
-      // u: clamped cotangent weights over the union's free vertices (all their edges are
-      // in the union: its border is the four cycles).
-      std::vector<int> index(std::size_t(nv), -1), free;
-      for(int f = 0; f < nf; ++f)
-        if(region_of[f] == -1)
-          for(int v : g.face_vertices[f])
-            if(u[v] < 0. && index[v] < 0) { index[v] = int(free.size()); free.push_back(v); }
-      if(free.empty()) continue;
-      std::vector<Eigen::Triplet<double>> entries;
-      Eigen::VectorXd rhs = Eigen::VectorXd::Zero(Eigen::Index(free.size()));
-      for(std::size_t i = 0; i < free.size(); ++i) {
-        double diagonal = 0.;
-        for(int a = g.offset[free[i]]; a < g.offset[free[i] + 1]; ++a) {
-          const int x = g.adjacent_vertex[a];
-          const double k = std::max(cot[std::size_t(g.adjacent_edge[a])], 1e-9); // every vertex tied to its ring
-          diagonal += k;
-          if(index[x] >= 0) entries.emplace_back(int(i), index[x], -k);
-          else rhs(Eigen::Index(i)) += k * std::max(u[x], 0.);
+    // Two sweeps, the second for the cycles next to one the first moved. A cycle's trace
+    // depends only on its two pants, i.e. on their boundary cycles: it is traced again only
+    // if one of them (itself included) moved since its last trace.
+    const std::size_t n = cycles.size();
+    std::size_t clock = 0;
+    std::vector<std::size_t> traced(n, 0), moved_at(n, 0);
+    for(int sweep = 0; sweep < 2; ++sweep) {
+      for(std::size_t c = 0; c < n; ++c) {
+        if(kinds[c] == Pants_cycle<TriangleMesh>::INPUT_BOUNDARY) continue;
+        const int left = face_on_side(g, cycles[c], 0, 0), right = face_on_side(g, cycles[c], 0, 1);
+        if(left >= nf || right >= nf) continue;
+        const int P = pants_of[left], Q = pants_of[right];
+        if(P == Q) continue; // a handle loop kept whole
+        if(sweep > 0) {
+          bool changed = false;
+          for(int pants : {P, Q})
+            for(int b : boundaries[std::size_t(pants)]) changed = changed || moved_at[std::size_t(b)] >= traced[c];
+          if(!changed) continue;
         }
-        entries.emplace_back(int(i), int(i), diagonal);
-      }
-      Eigen::SparseMatrix<double> A(Eigen::Index(free.size()), Eigen::Index(free.size()));
-      A.setFromTriplets(entries.begin(), entries.end());
-      internal::Sparse_cholesky solver;
-      solver.factor(A, "harmonic function of two pants");
-      const Eigen::VectorXd x = solver.solve(rhs);
-      for(std::size_t i = 0; i < free.size(); ++i) u[free[i]] = x(Eigen::Index(i));
-      std::vector<double> w_cut(w);
-      for(int e = 0; e < g.number_of_edges(); ++e) {
-        const double a = u[g.edge_vertices[e][0]], b = u[g.edge_vertices[e][1]];
-        if(a >= 0. && b >= 0.) w_cut[e] *= 1. + 0.5 * std::abs(a + b - 1.);
-      }
+        traced[c] = ++clock;
+        // The union, the cycle opened; the other boundaries of P (u = 0) and of Q (u = 1).
+        std::vector<int> region_of(pants_of);
+        for(int& p : region_of) if(p == P || p == Q) p = -1;
+        std::vector<char> cut(is_cut), on(on_cycle);
+        for(int e : cycles[c].edges) cut[e] = 0;
+        for(int v : cycles[c].vertices) on[v] = 0;
+        std::vector<double> u(std::size_t(nv), -1.);
+        for(int side = 0; side < 2; ++side)
+          for(int b : boundaries[std::size_t(side == 0 ? P : Q)])
+            if(b != int(c)) for(int v : cycles[b].vertices) u[v] = double(side);
 
-      // Terminals: the faces along each pants' other boundaries, joined inside it by a
-      // shortest face chain, as in the cutting steps.
-      auto terminal = [&](int pants, std::vector<char>& mark) {
-        std::vector<std::vector<int>> along;
-        for(int b : boundaries[std::size_t(pants)]) {
-          if(b == int(c)) continue;
-          along.emplace_back();
-          for(std::size_t i = 0; i < cycles[b].edges.size(); ++i)
-            for(int side = 0; side < 2; ++side) {
-              const int f = face_on_side(g, cycles[b], i, side);
-              if(f < nf && pants_of[f] == pants) along.back().push_back(f);
-            }
+        // u: clamped cotangent weights over the union's free vertices (all their edges are
+        // in the union: its border is the four cycles).
+        std::vector<int> index(std::size_t(nv), -1), free;
+        for(int f = 0; f < nf; ++f)
+          if(region_of[f] == -1)
+            for(int v : g.face_vertices[f])
+              if(u[v] < 0. && index[v] < 0) { index[v] = int(free.size()); free.push_back(v); }
+        if(free.empty()) continue;
+        std::vector<Eigen::Triplet<double>> entries;
+        Eigen::VectorXd rhs = Eigen::VectorXd::Zero(Eigen::Index(free.size()));
+        for(std::size_t i = 0; i < free.size(); ++i) {
+          double diagonal = 0.;
+          for(int a = g.offset[free[i]]; a < g.offset[free[i] + 1]; ++a) {
+            const int x = g.adjacent_vertex[a];
+            const double k = std::max(cot[std::size_t(g.adjacent_edge[a])], 1e-9); // every vertex tied to its ring
+            diagonal += k;
+            if(index[x] >= 0) entries.emplace_back(int(i), index[x], -k);
+            else rhs(Eigen::Index(i)) += k * std::max(u[x], 0.);
+          }
+          entries.emplace_back(int(i), int(i), diagonal);
         }
-        for(const auto& fs : along) for(int f : fs) mark[f] = 1;
-        if(along.size() < 2 || along[0].empty() || along[1].empty()) return false;
-        std::vector<char> outside(nf, 0), goal(nf, 0);
-        for(int f = 0; f < nf; ++f) outside[f] = pants_of[f] != pants;
-        for(int f : along[1]) goal[f] = 1;
-        int reached = -1;
-        const Face_tree t = face_tree(g, along[0], cut, region_of, centroid, outside, [&](int f, double) {
-          if(goal[f]) reached = f;
+        Eigen::SparseMatrix<double> A(Eigen::Index(free.size()), Eigen::Index(free.size()));
+        A.setFromTriplets(entries.begin(), entries.end());
+        internal::Sparse_cholesky solver;
+        solver.factor(A, "harmonic function of two pants");
+        const Eigen::VectorXd x = solver.solve(rhs);
+        for(std::size_t i = 0; i < free.size(); ++i) u[free[i]] = x(Eigen::Index(i));
+        std::vector<double> w_cut(w);
+        for(int e = 0; e < g.number_of_edges(); ++e) {
+          const double a = u[g.edge_vertices[e][0]], b = u[g.edge_vertices[e][1]];
+          if(a >= 0. && b >= 0.) w_cut[e] *= 1. + 0.5 * std::abs(a + b - 1.);
+        }
+
+        // Terminals: the faces along each pants' other boundaries, joined inside it by a
+        // shortest face chain, as in the cutting steps.
+        auto terminal = [&](int pants, std::vector<char>& mark) {
+          std::vector<std::vector<int>> along;
+          for(int b : boundaries[std::size_t(pants)]) {
+            if(b == int(c)) continue;
+            along.emplace_back();
+            for(std::size_t i = 0; i < cycles[b].edges.size(); ++i)
+              for(int side = 0; side < 2; ++side) {
+                const int f = face_on_side(g, cycles[b], i, side);
+                if(f < nf && pants_of[f] == pants) along.back().push_back(f);
+              }
+          }
+          for(const auto& fs : along) for(int f : fs) mark[f] = 1;
+          if(along.size() < 2 || along[0].empty() || along[1].empty()) return false;
+          std::vector<char> outside(nf, 0), goal(nf, 0);
+          for(int f = 0; f < nf; ++f) outside[f] = pants_of[f] != pants;
+          for(int f : along[1]) goal[f] = 1;
+          int reached = -1;
+          const Face_tree t = face_tree(g, along[0], cut, region_of, centroid, outside, [&](int f, double) {
+            if(goal[f]) reached = f;
+            return reached >= 0;
+          });
+          for(int f = reached; f >= 0; f = t.parent[f]) mark[f] = 1;
           return reached >= 0;
-        });
-        for(int f = reached; f >= 0; f = t.parent[f]) mark[f] = 1;
-        return reached >= 0;
-      };
-      std::vector<char> source(nf, 0), sink(nf, 0);
-      if(!terminal(P, source) || !terminal(Q, sink)) continue;
-      bool overlap = false;
-      for(int f = 0; f < nf; ++f) overlap = overlap || (source[f] && sink[f]);
-      if(overlap) continue;
+        };
+        std::vector<char> source(nf, 0), sink(nf, 0);
+        if(!terminal(P, source) || !terminal(Q, sink)) continue;
+        bool overlap = false;
+        for(int f = 0; f < nf; ++f) overlap = overlap || (source[f] && sink[f]);
+        if(overlap) continue;
 
-      const Cut_problem problem{g, w_cut, cut, on, region_of, source, sink};
-      std::vector<char> side;
-      double value = separating_cycle_cut(problem, side);
-      if(value < infinity) {
-        const std::vector<char> inside = side;
-        value = band_min_cut(problem, &inside, side);
+        std::vector<char> side;
+        std::vector<int> vertices;
+        Cycle_edges moved; // P (the source side) stays on its left
+        if(!(trace_cut(Cut_problem{g, w_cut, cut, on, region_of, source, sink}, side, vertices, moved) < infinity)) continue;
+        if(!(sum(w_cut, moved) <= 0.9 * sum(w_cut, cycles[c])) || !(sum(w, moved) <= 1.25 * sum(w, cycles[c]))) continue;
+        for(int f = 0; f < nf; ++f) if(region_of[f] == -1) pants_of[f] = side[f] ? P : Q;
+        for(int e : cycles[c].edges) is_cut[e] = 0;
+        for(int v : cycles[c].vertices) on_cycle[v] = 0;
+        for(int e : moved.edges) is_cut[e] = 1;
+        for(int v : moved.vertices) on_cycle[v] = 1;
+        cycles[c] = std::move(moved);
+        moved_at[c] = clock;
       }
-      if(!(value < infinity)) value = band_min_cut(problem, nullptr, side);
-      if(!(value < infinity)) continue;
-      std::vector<int> cut_edges, vertices;
-      for(int e = 0; e < g.number_of_edges(); ++e) {
-        const int f0 = g.edge_faces[e][0], f1 = g.edge_faces[e][1];
-        if(!cut[e] && problem.in_region(f0) && problem.in_region(f1) && side[f0] != side[f1]) cut_edges.push_back(e);
-      }
-      if(!order_simple_cycle(g, cut_edges, vertices)) continue;
-      Cycle_edges moved = cycle_edges(g, vertices);
-      if(!(sum(w_cut, moved) <= 0.9 * sum(w_cut, cycles[c])) || !(sum(w, moved) <= 1.25 * sum(w, cycles[c]))) continue;
-      const int l = face_on_side(g, moved, 0, 0); // P stays on the cycle's left
-      if(!(problem.in_region(l) && side[l])) {
-        std::reverse(vertices.begin(), vertices.end());
-        moved = cycle_edges(g, vertices);
-      }
-      for(int f = 0; f < nf; ++f) if(region_of[f] == -1) pants_of[f] = side[f] ? P : Q;
-      for(int e : cycles[c].edges) is_cut[e] = 0;
-      for(int v : cycles[c].vertices) on_cycle[v] = 0;
-      for(int e : moved.edges) is_cut[e] = 1;
-      for(int v : moved.vertices) on_cycle[v] = 1;
-      cycles[c] = std::move(moved);
     }
   }
 
@@ -1046,6 +1017,35 @@ private:
       return !(source[f0] && source[f1]) && !(sink[f0] && sink[f1]);
     }
   };
+
+  // The minimum cut of `p` as a cycle: its weight (infinite when there is none, or when the
+  // cut edges are not one simple cycle), `side` (1 on the source side) and the cycle, as
+  // vertices and edges, oriented with the source side on its left (Algorithm 2).
+  static double trace_cut(const Cut_problem& p, std::vector<char>& side, std::vector<int>& vertices, Cycle_edges& c)
+  {
+    const Graph& g = p.g;
+    const double infinity = std::numeric_limits<double>::infinity();
+    double value = separating_cycle_cut(p, side);
+    if(value < infinity) {
+      // Among cuts of that weight, the one nearest the source (minimal source side): a flow
+      // inside the source side found, which holds it.
+      const std::vector<char> inside = side;
+      value = band_min_cut(p, &inside, side);
+    }
+    if(!(value < infinity)) value = band_min_cut(p, nullptr, side);
+    if(!(value < infinity)) return infinity;
+    std::vector<int> cut_edges;
+    for(int e = 0; e < g.number_of_edges(); ++e)
+      if(p.joins(e) && side[g.edge_faces[e][0]] != side[g.edge_faces[e][1]]) cut_edges.push_back(e);
+    if(!order_simple_cycle(g, cut_edges, vertices)) return infinity;
+    c = cycle_edges(g, vertices);
+    const int left = face_on_side(g, c, 0, 0);
+    if(!(p.in_region(left) && side[left])) {
+      std::reverse(vertices.begin(), vertices.end());
+      c = cycle_edges(g, vertices);
+    }
+    return value;
+  }
 
   // The cut of `p` as the shortest separating cycle of a planar annulus (reference §2.2.1.2,
   // Algorithm 2, made exact with the divide and conquer of Reif / Itai and Shiloach). A
