@@ -128,6 +128,44 @@ inline std::string voxel_plate_off(int nx, int ny, const std::set<std::pair<int,
   return off_text(points, quads);
 }
 
+/// Boundary surface of a union of unit cubes (`cells`, by their lowest corners), as quads,
+/// each cube split into `split`^3 (finer meshes of the same solid).
+inline std::string voxel_solid_off(const std::set<std::array<int, 3>>& cells, int split = 1)
+{
+  std::set<std::array<int, 3>> fine;
+  for(const auto& c : cells)
+    for(int i = 0; i < split * split * split; ++i)
+      fine.insert({split * c[0] + i % split, split * c[1] + i / split % split, split * c[2] + i / (split * split)});
+  std::map<std::array<int, 3>, std::size_t> index;
+  std::vector<std::array<double, 3>> points;
+  std::vector<Polygon> quads;
+  auto vid = [&](std::array<int, 3> p) {
+    auto it = index.find(p);
+    if(it != index.end()) return it->second;
+    index[p] = points.size();
+    points.push_back({double(p[0]) / split, double(p[1]) / split, double(p[2]) / split});
+    return points.size() - 1;
+  };
+  for(const auto& c : fine)
+    for(int a = 0; a < 3; ++a)
+      for(int s : {-1, 1}) {
+        std::array<int, 3> n = c;
+        n[a] += s;
+        if(fine.count(n)) continue;
+        // The face across axis a; (u, v) cyclic after a, so u x v points along +a.
+        const int u = (a + 1) % 3, v = (a + 2) % 3;
+        std::array<int, 3> p = c;
+        if(s > 0) ++p[a];
+        std::array<std::array<int, 3>, 4> q{p, p, p, p};
+        ++q[1][u];
+        ++q[2][u], ++q[2][v];
+        ++q[3][v];
+        if(s > 0) quads.push_back({vid(q[0]), vid(q[1]), vid(q[2]), vid(q[3])});
+        else quads.push_back({vid(q[0]), vid(q[3]), vid(q[2]), vid(q[1])});
+      }
+  return off_text(points, quads);
+}
+
 /// An L of unit cubes, 4 by 3 by 1 (a CAD block: the plate without the cells x >= 1, y >= 1).
 inline std::string voxel_l_off()
 {

@@ -154,27 +154,14 @@ bool relax_arc(Polycube_layout<Point_3>& L, std::size_t a, const std::array<std:
         weight[std::size_t(edge(h, m))] += 0.5 * bounded_cotangent(position(target(next(h, m), m)), position(source(h, m)),
                                                                      position(target(h, m)), 1e5);
     }
-  std::vector<Eigen::Triplet<double>> entries;
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(Eigen::Index(inner.size()), 1);
-  for(std::size_t i = 0; i < inner.size(); ++i) {
-    double diagonal = 0.;
+  Harmonic_extension system(inner.size());
+  for(std::size_t i = 0; i < inner.size(); ++i)
     for(H h : halfedges_around_target(inner[i], m)) {
       const V w = source(h, m);
-      const double x = std::max(weight[std::size_t(edge(h, m))], 1e-9); // every inner vertex tied to its ring
-      diagonal += x;
-      if(inner_index[std::size_t(w)] >= 0) {
-        if(inner_index[std::size_t(w)] < int(i)) entries.emplace_back(int(i), inner_index[std::size_t(w)], -x);
-      } else
-        rhs(Eigen::Index(i), 0) += x * value[std::size_t(w)];
+      system.add_edge(int(i), inner_index[std::size_t(w)], weight[std::size_t(edge(h, m))], value[std::size_t(w)]);
     }
-    entries.emplace_back(int(i), int(i), diagonal);
-  }
-  Eigen::SparseMatrix<double> A(Eigen::Index(inner.size()), Eigen::Index(inner.size()));
-  A.setFromTriplets(entries.begin(), entries.end());
-  Sparse_cholesky solver;
-  solver.factor(A, "harmonic function of two layout patches");
-  const Eigen::MatrixXd x = solver.solve(rhs);
-  for(std::size_t i = 0; i < inner.size(); ++i) value[std::size_t(inner[i])] = x(Eigen::Index(i), 0);
+  const Eigen::VectorXd x = system.solve("harmonic function of two layout patches");
+  for(std::size_t i = 0; i < inner.size(); ++i) value[std::size_t(inner[i])] = x(Eigen::Index(i));
 
   // An inner vertex within a tenth of an edge of the level joins it (no sliver triangles),
   // then every edge the level crosses is split there (the surface does not move).

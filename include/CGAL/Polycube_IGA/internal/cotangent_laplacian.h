@@ -22,12 +22,15 @@
 #ifndef CGAL_POLYCUBE_IGA_INTERNAL_COTANGENT_LAPLACIAN_H
 #define CGAL_POLYCUBE_IGA_INTERNAL_COTANGENT_LAPLACIAN_H
 
+#include <CGAL/Polycube_IGA/internal/sparse_cholesky.h>
+
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace CGAL {
@@ -115,6 +118,50 @@ Eigen::SparseMatrix<double> lumped_mass_matrix(const Mesh_graph& g)
   M.makeCompressed();
   return M;
 }
+
+/*!
+ * The Dirichlet problem of a weighted graph Laplacian: values at `n` free unknowns such that
+ * each is the weighted mean of its neighbours, the other vertices' values fixed. Callers add
+ * every edge at each free unknown once from that unknown's side (so an edge between two free
+ * unknowns twice, once per end); weights below 1e-9 are raised to it, so that every unknown
+ * stays tied to its ring and the matrix is positive definite when each component of free
+ * unknowns touches a fixed vertex. With clamped cotangent weights it is an M-matrix: the
+ * solution stays within the fixed values (the level sets the harmonic cuts of
+ * Pants_decomposition.h and Layout_arc_relaxation.h follow are then single curves).
+ */
+class Harmonic_extension
+{
+public:
+  explicit Harmonic_extension(std::size_t n) : diagonal_(n, 0.), rhs_(Eigen::VectorXd::Zero(Eigen::Index(n))) {}
+
+  /// The edge from free unknown `i` to free unknown `j`, or, with `j < 0`, to a fixed
+  /// vertex of value `fixed`; weight `k`.
+  void add_edge(int i, int j, double k, double fixed = 0.)
+  {
+    k = std::max(k, 1e-9);
+    diagonal_[std::size_t(i)] += k;
+    if(j < 0) rhs_(Eigen::Index(i)) += k * fixed;
+    else if(j < i) lower_.emplace_back(i, j, -k); // the solver reads the lower triangle only
+  }
+
+  /// The free unknowns' values; `what` names the system in a solver failure.
+  Eigen::VectorXd solve(const std::string& what) const
+  {
+    const Eigen::Index n = rhs_.size();
+    std::vector<Eigen::Triplet<double>> entries(lower_);
+    for(Eigen::Index i = 0; i < n; ++i) entries.emplace_back(int(i), int(i), diagonal_[std::size_t(i)]);
+    Eigen::SparseMatrix<double> A(n, n);
+    A.setFromTriplets(entries.begin(), entries.end());
+    Sparse_cholesky solver;
+    solver.factor(A, what);
+    return solver.solve(rhs_);
+  }
+
+private:
+  std::vector<double> diagonal_;
+  Eigen::VectorXd rhs_;
+  std::vector<Eigen::Triplet<double>> lower_;
+};
 
 } // namespace internal
 } // namespace Polycube_IGA
