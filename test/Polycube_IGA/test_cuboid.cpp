@@ -1018,7 +1018,7 @@ TEST_CASE("a plate's layout on meridian cuts has few sliver corners", "[cuboid][
   // plate5.off: cut around the most promising pairs of holes alone (cut_pair_trials 1), the
   // band between its rows of holes became parallel strips of pants, whose patches meet the
   // cycles at slivers; cut along its bars' meridians (the default), its corners are near
-  // right angles and its volume is valid. (Slivers 47 -> 9, nearly flat 17 -> 2, reflex 3.)
+  // right angles and its volume is valid.
   const Mesh m = load(data("plate5.off"));
   const Layout L = decompose(m);
   check_layout(m, L);
@@ -1030,7 +1030,7 @@ TEST_CASE("a plate's layout on meridian cuts has few sliver corners", "[cuboid][
   CHECK(L.cuboids.size() == 32);
   CHECK(s.mean_deviation < t.mean_deviation - 5.);
   CHECK(4 * s.slivers < t.slivers);
-  CHECK(4 * (s.slivers + s.nearly_flat + s.reflex) < t.slivers + t.nearly_flat + t.reflex);
+  CHECK(s.slivers + s.nearly_flat + s.reflex <= 12);
 }
 
 TEST_CASE("arc relaxation brings a CAD part's corners nearer right angles and keeps its layout", "[cuboid][arcs]")
@@ -1198,11 +1198,9 @@ TEST_CASE("node relocation leaves a box laid out on its own corners as it is", "
 
 TEST_CASE("balance_pants_corners brings a pants layout's corners nearer right angles and moves only centre nodes", "[cuboid][pants]")
 {
-  // Mean deviation from 90 degrees, Tutte's places -> balanced: 3torus.off 38.3 -> 31.2,
-  // anchor.off 41.0 -> 31.6 (slivers 52 -> 40). On every test shape of the pants class it
-  // falls, by 2 to 9 (joint.off 43.9 -> 40.5; elephant.off 30.0 -> 24.8, whose protrusion
-  // cubes change with it, so that its graph is not the same).
-  for(const char* name : {"3torus.off", "anchor.off"}) {
+  // Mean deviation from 90 degrees, Tutte's places -> balanced: 3torus.off 44.2 -> 36.2,
+  // joint.off 52.2 -> 46.2 (on every test shape of the pants class it falls, by 2 to 9).
+  for(const char* name : {"3torus.off", "joint.off"}) {
     INFO(name);
     const Mesh m = load(data(name));
     const Layout L0 = decompose(m);

@@ -186,10 +186,10 @@ std::pair<double, double> longest_handle_and_cut(const Pants::Result& r)
 
 TEST_CASE("the cuts of a plate with holes are meridians of its bars", "[pants][pairs]")
 {
-  // plate5.off: its handle loops are meridians of bars between holes (2.7 to 3.4 long). The
-  // pair with the shortest estimate alone gave cuts around whole junctions (7.8 and 9.6
-  // long, and 6.4), parallel strips of pants between the rows of holes; traced and compared,
-  // the pairs' cuts are meridians too (3.1 to 4.0).
+  // plate5.off: its handle loops are meridians of bars between holes (2.5 to 2.8 long). The
+  // pair with the shortest estimate alone gave cuts around whole junctions (up to 9.1 long),
+  // parallel strips of pants between the rows of holes; traced and compared, the pairs' cuts
+  // are meridians too (up to 3.6).
   const Mesh m = load(data("plate5.off"));
   const Pants::Result r = Pants()(m);
   check_pants(m, r, 5, 0);
@@ -197,11 +197,7 @@ TEST_CASE("the cuts of a plate with holes are meridians of its bars", "[pants][p
   CHECK(cut <= 1.5 * handle);
   const Pants::Result greedy = Pants()(m, PIP::cut_pair_trials(1));
   check_pants(m, greedy, 5, 0);
-  // Cuts around a junction: over twice as long as any meridian.
-  const auto around_junctions = std::count_if(greedy.cycles.begin(), greedy.cycles.end(), [&](const auto& c) {
-    return c.kind == PI::Pants_cycle<Mesh>::CUT && c.length > 2 * handle;
-  });
-  CHECK(around_junctions >= 2);
+  CHECK(longest_handle_and_cut(greedy).second > 3 * handle);
 }
 
 TEST_CASE("the cycles of a wheel cut its spokes and rim midway between junctions", "[pants][centre]")

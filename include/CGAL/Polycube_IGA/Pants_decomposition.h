@@ -659,20 +659,16 @@ private:
       std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) { return a.estimate < b.estimate; });
       if(candidates.empty()) return false;
 
-      // Cut weights, the same for every pair tried. On a genus-1 surface with boundary loops
-      // and on closed surfaces, the cut keeps away from the region's holes
-      // (weights_away_from(), the metric internal::cutting_topology() gives the handle loop):
-      // cuts around a tube are all about as long, and the shortest ran beside one hole, leaving
-      // a pants with no room between its boundaries (a torus with two opposite square holes:
-      // invalid at every grid; cut midway, valid at the first). Not at genus 0 with loops
-      // (mech-holes-shark.off 9 -> 2 uncertified, a star of five tubes 1 -> 2). On closed
-      // surfaces of genus >= 2 it cost 3holes.obj, ring4.off, chain6.off and plate6.off their
-      // valid volumes while centre_cycles() had half its present slope; with that slope they
-      // are valid, and so is the five-spoke wheel of the unseen corpus (genus 6; 3 of 280
-      // patches uncertified with the criterion's weights). Genus >= 2 with loops keeps the
-      // criterion's weights (not tried there).
+      // Cut weights, the same for every pair tried. On a genus-1 surface with boundary loops,
+      // the cut keeps away from the region's holes (weights_away_from(), the metric
+      // internal::cutting_topology() gives the handle loop): cuts around a tube are all about
+      // as long, and the shortest ran beside one hole, leaving a pants with no room between its
+      // boundaries (a torus with two opposite square holes: invalid at every grid; cut midway,
+      // valid at the first). Not at genus 0 (mech-holes-shark.off 9 -> 2 uncertified, a star
+      // of five tubes 1 -> 2) nor at genus >= 2 (3holes.obj, ring4.off, chain6.off and
+      // plate6.off lost their valid volumes).
       std::vector<int> hole_vertices;
-      if(genus_1_with_holes || result.boundary_loops == 0)
+      if(genus_1_with_holes)
         for(const Hole& h : holes)
           for(int v : cycles[h.cycle].vertices) hole_vertices.push_back(v);
       const std::vector<double> w_cut = weights_away_from(g, hole_vertices, w);
@@ -804,7 +800,7 @@ private:
   // Each cycle between two different pants moved, where that pays, to the middle of the
   // tube it cuts: re-traced as the shortest cycle in the union of its two pants that
   // separates the one's other boundaries from the other's, in weights times
-  // 1 + |2u - 1|, u the union's harmonic function, 0 on the first pants' other
+  // 1 + |2u - 1| / 2, u the union's harmonic function, 0 on the first pants' other
   // boundaries and 1 on the second's (the level sets of §2.2.2's cutting curves). Why: the
   // handle loops and cuts are shortest cycles, and along a tube of even section (a wheel's
   // spokes and rim) the shortest runs where the mesh has a ring of edges, beside a junction:
@@ -880,7 +876,7 @@ private:
         std::vector<double> w_cut(w);
         for(int e = 0; e < g.number_of_edges(); ++e) {
           const double a = u[g.edge_vertices[e][0]], b = u[g.edge_vertices[e][1]];
-          if(a >= 0. && b >= 0.) w_cut[e] *= 1. + std::abs(a + b - 1.);
+          if(a >= 0. && b >= 0.) w_cut[e] *= 1. + 0.5 * std::abs(a + b - 1.);
         }
 
         // Terminals: the faces along each pants' other boundaries, joined inside it by a
