@@ -13,9 +13,11 @@
 #include <CGAL/Polycube_IGA/Layout_node_relocation.h>
 #include <CGAL/Polycube_IGA/Pants_decomposition.h>
 #include <CGAL/Polycube_IGA/internal/bbox_diagonal.h>
+#include <CGAL/Polycube_IGA/internal/cotangent_laplacian.h>
 #include <CGAL/Polycube_IGA/internal/feature_curves.h>
 #include <CGAL/Polycube_IGA/internal/layout_measures.h>
 #include <CGAL/Polycube_IGA/internal/loop_corners.h>
+#include <CGAL/Polycube_IGA/internal/mesh_graph.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
@@ -1242,4 +1244,49 @@ TEST_CASE("balance_pants_corners brings a pants layout's corners nearer right an
     for(std::size_t n = 0; same && n < L.nodes.size(); ++n) same = again.mesh.point(again.nodes[n]) == L.mesh.point(L.nodes[n]);
     CHECK(same);
   }
+}
+
+TEST_CASE("the harmonic extension of the centring and the arc relaxation reproduces a linear function on a flat mesh", "[cuboid][arcs][harmonic]")
+{
+  // Cotangent weights have linear precision: on a flat mesh of acute triangles, the harmonic
+  // extension of x + 2y from the border is x + 2y inside (internal::Harmonic_extension, the
+  // solve of Pants_decomposition's centring and of relax_arc()). Rows of equilateral
+  // triangles, every other row shifted by half an edge.
+  const int n = 12;
+  std::vector<std::array<double, 3>> points;
+  std::vector<Polygon> triangles;
+  for(int j = 0; j <= n; ++j)
+    for(int i = 0; i <= n; ++i) points.push_back({i + 0.5 * (j % 2), j * std::sqrt(3.) / 2, 0.});
+  auto id = [&](int i, int j) { return std::size_t(j * (n + 1) + i); };
+  for(int j = 0; j < n; ++j)
+    for(int i = 0; i < n; ++i) {
+      if(j % 2 == 0) {
+        triangles.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
+        triangles.push_back({id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+      } else {
+        triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+        triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      }
+    }
+  const Mesh m = load(write_text("flat.off", off_text(points, triangles)));
+  const PI::internal::Mesh_graph<Mesh> g(m, get(CGAL::vertex_point, m));
+  const std::vector<double> w = PI::internal::cotangent_edge_weights(g);
+  auto linear = [&](int v) { return g.position[v].x() + 2 * g.position[v].y(); };
+  std::vector<int> index(std::size_t(g.number_of_vertices()), -1), free;
+  for(auto v : vertices(m))
+    if(!CGAL::is_border(v, m)) {
+      index[std::size_t(v)] = int(free.size());
+      free.push_back(int(std::size_t(v)));
+    }
+  REQUIRE(free.size() == std::size_t((n - 1) * (n - 1)));
+  PI::internal::Harmonic_extension system(free.size());
+  for(std::size_t i = 0; i < free.size(); ++i)
+    for(int a = g.offset[free[i]]; a < g.offset[free[i] + 1]; ++a) {
+      const int x = g.adjacent_vertex[a];
+      system.add_edge(int(i), index[std::size_t(x)], w[std::size_t(g.adjacent_edge[a])], linear(x));
+    }
+  const Eigen::VectorXd u = system.solve("flat test mesh");
+  double worst = 0;
+  for(std::size_t i = 0; i < free.size(); ++i) worst = std::max(worst, std::abs(u(Eigen::Index(i)) - linear(free[i])));
+  CHECK(worst < 1e-9);
 }

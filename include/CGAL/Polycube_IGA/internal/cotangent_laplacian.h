@@ -125,9 +125,10 @@ Eigen::SparseMatrix<double> lumped_mass_matrix(const Mesh_graph& g)
  * every edge at each free unknown once from that unknown's side (so an edge between two free
  * unknowns twice, once per end); weights below 1e-9 are raised to it, so that every unknown
  * stays tied to its ring and the matrix is positive definite when each component of free
- * unknowns touches a fixed vertex. With clamped cotangent weights it is an M-matrix: the
- * solution stays within the fixed values (the level sets the harmonic cuts of
- * Pants_decomposition.h and Layout_arc_relaxation.h follow are then single curves).
+ * unknowns touches a fixed vertex. With clamped cotangent weights it is an M-matrix: no
+ * overshoot, no inner extremum, so each side of a level set touches fixed vertices (what
+ * the centring of Pants_decomposition.h and the arc relaxation of Layout_arc_relaxation.h
+ * rely on).
  */
 class Harmonic_extension
 {
