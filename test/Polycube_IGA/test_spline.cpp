@@ -544,6 +544,55 @@ TEST_CASE("a folded volume is always caught by the certified bound", "[spline]")
   CHECK(bm.upper_bound >= sm.max_determinant);
 }
 
+TEST_CASE("the Bernstein product behind the bound is the product of the polynomials, at any degree", "[spline]")
+{
+  namespace PII = PI::internal;
+  // Value of a Bernstein polynomial by its definition, sum C(n,i) t^i (1-t)^(n-i) c_ijk.
+  auto value = [](const PII::Bernstein3& f, const std::array<double, 3>& t) {
+    double sum = 0.;
+    for(int k = 0; k <= f.degree[2]; ++k)
+      for(int j = 0; j <= f.degree[1]; ++j)
+        for(int i = 0; i <= f.degree[0]; ++i) {
+          double b = f(i, j, k);
+          const std::array<int, 3> n{{i, j, k}};
+          for(int d = 0; d < 3; ++d)
+            b *= PII::binomial(f.degree[std::size_t(d)], n[std::size_t(d)]) * std::pow(t[std::size_t(d)], n[std::size_t(d)]) *
+                 std::pow(1. - t[std::size_t(d)], f.degree[std::size_t(d)] - n[std::size_t(d)]);
+          sum += b;
+        }
+    return sum;
+  };
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> coefficient(-1., 1.);
+  auto random = [&](const std::array<int, 3>& degree) {
+    PII::Bernstein3 f(degree);
+    for(double& c : f.c) c = coefficient(rng);
+    return f;
+  };
+  // The det J of a cubic span (degrees up to 8), and degrees past the tabulated binomials (64).
+  for(const auto& degrees : {std::array<std::array<int, 3>, 2>{{{{2, 3, 3}}, {{6, 5, 5}}}},
+                             std::array<std::array<int, 3>, 2>{{{{40, 1, 0}}, {{30, 2, 1}}}}}) {
+    const PII::Bernstein3 a = random(degrees[0]), b = random(degrees[1]);
+    const PII::Bernstein3 ab = PII::multiply(a, b);
+    for(int d = 0; d < 3; ++d) CHECK(ab.degree[std::size_t(d)] == a.degree[std::size_t(d)] + b.degree[std::size_t(d)]);
+    for(const std::array<double, 3>& t : {std::array<double, 3>{{0.1, 0.5, 0.9}}, std::array<double, 3>{{0.73, 0.2, 0.35}},
+                                          std::array<double, 3>{{0., 1., 0.5}}}) {
+      const double expected = value(a, t) * value(b, t);
+      INFO("degree " << ab.degree[0] << " at " << t[0] << " " << t[1] << " " << t[2]);
+      CHECK(std::abs(value(ab, t) - expected) <= 1e-10 * std::max(1., std::abs(expected)));
+    }
+  }
+  // The tabulated rows are the binomials themselves.
+  std::vector<double> spare;
+  const double* row = PII::binomial_row(8, spare);
+  CHECK(row[0] == 1.);
+  CHECK(row[3] == 56.);
+  CHECK(row[8] == 1.);
+  const double* high = PII::binomial_row(70, spare);
+  CHECK(high[1] == 70.);
+  CHECK(high[69] == 70.);
+}
+
 TEST_CASE("multipatch topology, direction maps, interface conformity", "[spline]")
 {
   // Two cubes side by side; the second has its parametric directions permuted and reversed.
