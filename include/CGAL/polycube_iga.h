@@ -254,6 +254,9 @@ struct Trivariate_model
   /// Whether a layout on a polycube map was tried after the first layouts gave no valid
   /// volume (see `polycube_retry` in build_trivariate_model()).
   bool polycube_retried = false;
+  /// Whether the pants were traced again with their cuts away from the holes after the
+  /// layouts above gave no valid volume (see `cuts_away_retry` in build_trivariate_model()).
+  bool cuts_away_retried = false;
   /// Whether a layout on a polycube map was tried first, the surface being nearly an
   /// orthogonal polyhedron (see `polycube_first_alignment` in build_trivariate_model()).
   bool polycube_first = false;
@@ -283,6 +286,9 @@ struct Layout_variant
   bool sphere_chain = true;
   /// Sweeps of relocate_layout_nodes(); -1: the `node_relocation_sweeps` named parameter.
   int node_relocation_sweeps = -1;
+  /// A closed surface's pants cut away from the holes (Pants_decomposition's
+  /// `cuts_away_from_holes`); false: the named parameter.
+  bool cuts_away_from_holes = false;
 };
 
 /// Appends `from`'s stage seconds to `to`, each name followed by `suffix`.
@@ -386,7 +392,9 @@ build_on_layout(const TriangleMesh& tm, const NamedParameters& np, const std::fu
                                          .orthogonal_blocks(option(np, internal_np::orthogonal_blocks, true))
                                          .polycube_map(variant.polycube_map)
                                          .balance_pants_corners(option(np, internal_np::balance_pants_corners, false))
-                                         .cut_pair_trials(option(np, internal_np::cut_pair_trials, default_cut_pair_trials)));
+                                         .cut_pair_trials(option(np, internal_np::cut_pair_trials, default_cut_pair_trials))
+                                         .cuts_away_from_holes(variant.cuts_away_from_holes ||
+                                                               option(np, internal_np::cuts_away_from_holes, false)));
   });
   model.sphere_chain = model.layout.layout_class == Layout_class::sphere && model.layout.cuboids.size() > 1;
   if(node_sweeps > 0)
@@ -987,6 +995,12 @@ auto build_with_class_variants(const TriangleMesh& tm, const NamedParameters& np
 /// valid, the first layout is built again with this many sweeps of node relocation, through
 /// the same grids and degrees, and kept if its volume is valid (mech-holes-shark.off: valid
 /// at 20 samples); 0: never. `relocation_retried` of the model says it was tried.
+/// `cuts_away_retry` (true): a closed surface of genus 2 or more whose volume is not valid on
+/// any layout above is built again on pants whose cuts keep away from the holes
+/// (Pants_decomposition's `cuts_away_from_holes`, which this function passes on as well), and
+/// that volume is kept if valid, else it competes for the nearest to valid (the five-spoke
+/// wheel of the benchmark corpus: valid this way); `cuts_away_retried` of the model says it
+/// was tried.
 /// `missing_part_cubes` (2): when the first volume misses a part of the shape (a mesh point
 /// far from it while all of it is near the mesh: a protrusion that a patch's map to the
 /// square shrinks), that patch gets a cube of its own, its bottom around the farthest point
@@ -1065,12 +1079,18 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   // crossing round holes: its pants layout left 13 of 76 patches uncertified and 2.35% off,
   // its polycube map's boxes 2 of 112, 1.61%), with the whole run's record and its own
   // diagnostics, which name its own patches.
-  auto nearest_attempt = [&](Model* relocated) {
+  // The retries' volumes that are not valid (below).
+  std::optional<Model> relocated, away, away_relocated;
+  auto nearest_attempt = [&] {
     Model* kept = &model;
     const std::string genus_layout = "the " + std::string(layout_class_name(model.layout.layout_class)) + " layout";
     std::string kept_name = genus_layout;
-    const std::pair<Model*, std::string> alternatives[] = {{polycube_attempt ? &*polycube_attempt : nullptr, "the polycube map's boxes"},
-                                                           {relocated, genus_layout + " with its nodes relocated"}};
+    auto address = [](std::optional<Model>& m) { return m ? &*m : nullptr; };
+    const std::pair<Model*, std::string> alternatives[] = {
+      {address(polycube_attempt), "the polycube map's boxes"},
+      {address(relocated), genus_layout + " with its nodes relocated"},
+      {address(away), genus_layout + " with the pants cut away from the holes"},
+      {address(away_relocated), genus_layout + " with the pants cut away from the holes and its nodes relocated"}};
     for(const auto& [alternative, name] : alternatives)
       if(alternative && internal::nearer_valid(alternative->volume, kept->volume, model.maximum_boundary_distance))
         kept = alternative, kept_name = name;
@@ -1079,6 +1099,7 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     kept->polycube_first = model.polycube_first;
     kept->polycube_retried = model.polycube_retried;
     kept->relocation_retried = model.relocation_retried;
+    kept->cuts_away_retried = model.cuts_away_retried;
     kept->warnings.insert(kept->warnings.begin(), run_record.begin(), run_record.end());
     kept->warnings.insert(kept->warnings.begin(), "no attempt gave a valid volume; the one kept is the nearest to valid, on " + kept_name +
                                                       " (" + internal::volume_shortfall(kept->volume) + "); on " + genus_layout + ": " +
@@ -1122,41 +1143,88 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
       run_record.push_back("a layout on a polycube map was tried too and failed: " + failure);
     model.warnings.push_back(run_record.back());
   }
-  if(retry_sweeps == 0 || option(np, internal_np::node_relocation_sweeps, 0) > 0) return nearest_attempt(nullptr);
+  // One more layout after those above gave no valid volume: returned if its volume is valid,
+  // its first warning saying what it changed and why; otherwise the run's record says what it
+  // gave and `invalid` holds it for nearest_attempt().
+  struct Retry_words
+  {
+    std::function<std::string(const Model&)> figures; // of the layout built
+    std::string tried, valid, before, nothing, failed, own_suffix, suffix;
+  };
+  using Nodes = std::decay_t<decltype(internal::node_points(model.layout))>;
+  auto retry = [&](const internal::Layout_variant& variant, const Nodes* unless_nodes,
+                   const Retry_words& words, std::optional<Model>& invalid) -> std::optional<Model> {
+    std::optional<Model> other;
+    try {
+      other = internal::build_on_layout(tm, np, progress, budget, variant, false, false, unless_nodes);
+      if(!other) model.warnings.push_back(words.nothing);
+    } catch(const Error& e) {
+      model.warnings.push_back(words.failed + ": " + e.reason() + ": " + e.what());
+    }
+    if(!other) return std::nullopt;
+    if(other->is_valid()) {
+      other->polycube_retried = model.polycube_retried;
+      other->relocation_retried = model.relocation_retried;
+      other->cuts_away_retried = model.cuts_away_retried;
+      other->warnings.insert(other->warnings.begin(), words.valid + " (" + words.figures(*other) + "): " + words.before + " (" +
+                                                        internal::comma_list(model.invalidity_reasons()) + ")");
+      internal::prepend_stage_seconds(other->stage_seconds, model.stage_seconds, words.own_suffix);
+      return other;
+    }
+    internal::append_stage_seconds(model.stage_seconds, other->stage_seconds, words.suffix);
+    run_record.push_back(words.tried + " (" + words.figures(*other) + ") were tried too and gave no valid volume (" +
+                         internal::comma_list(other->invalidity_reasons()) + ")");
+    model.warnings.push_back(run_record.back());
+    invalid = std::move(other);
+    return std::nullopt;
+  };
+  auto moves = [](const Model& m) { return std::to_string(m.node_relocation.nodes_moved) + " moves"; };
+  auto cuboids = [](const Model& m) { return std::to_string(m.layout.cuboids.size()) + " cuboids"; };
   // The decomposition puts nodes where the harmonic cuts and the conformal map say, blind to
   // the corners they make; a node amid a flat face or a spoke along a rim folds a face
   // (mech-holes-shark.off: 8 of 38 patches uncertified on its own nodes; relocated, valid).
-  // Last, since it moves the nodes of layouts that are valid as they are (blade.off's rim
-  // corners sit off the steps of its cut ends on purpose).
-  model.relocation_retried = true;
-  internal::Layout_variant relocated;
-  relocated.node_relocation_sweeps = retry_sweeps;
-  relocated.sphere_chain = model.sphere_chain;
-  std::optional<std::decay_t<decltype(model)>> other;
-  try {
-    other = internal::build_on_layout(tm, np, progress, budget, relocated, false, false, nullptr);
-  } catch(const Error& e) {
-    model.warnings.push_back("relocating the layout's nodes failed: " + e.reason() + ": " + e.what());
-    return nearest_attempt(nullptr);
+  // After the polycube map, since it moves the nodes of layouts that are valid as they are
+  // (blade.off's rim corners sit off the steps of its cut ends on purpose).
+  const bool relocate = retry_sweeps > 0 && option(np, internal_np::node_relocation_sweeps, 0) == 0;
+  if(relocate) {
+    model.relocation_retried = true;
+    internal::Layout_variant variant;
+    variant.node_relocation_sweeps = retry_sweeps;
+    variant.sphere_chain = model.sphere_chain;
+    const Retry_words words{moves, "the layout's nodes relocated", "the layout's nodes are relocated",
+                            "on the decomposition's own nodes the volume was not valid",
+                            "node relocation was tried too and moved no node", "relocating the layout's nodes failed",
+                            ", own nodes", ", nodes relocated"};
+    if(auto valid = retry(variant, nullptr, words, relocated)) return finished(*valid);
   }
-  if(!other) {
-    model.warnings.push_back("node relocation was tried too and moved no node");
-    return nearest_attempt(nullptr);
+  // Last, a closed surface's pants traced again with their cuts away from the holes
+  // (Pants_decomposition's `cuts_away_from_holes`), and that layout's nodes relocated: through
+  // the middle of a CAD wheel's spokes and rim rather than beside its junctions. Not first:
+  // on smooth shapes those cuts are longer and the volumes worse and slower to certify.
+  if(option(np, internal_np::cuts_away_retry, true) && closed && model.layout.layout_class == Layout_class::pants &&
+     !option(np, internal_np::cuts_away_from_holes, false)) {
+    model.cuts_away_retried = true;
+    internal::Layout_variant variant;
+    variant.cuts_away_from_holes = true;
+    // Nothing is built again when the cuts are where they were (3torus.off).
+    const auto own_nodes = internal::node_points(model.layout);
+    const Retry_words words{cuboids, "the pants cut away from the holes", "the pants are cut away from the holes",
+                            "with the shortest cuts the volume was not valid",
+                            "the pants cut away from the holes were tried too and gave the same layout",
+                            "cutting the pants away from the holes failed", ", shortest cuts", ", cuts away from holes"};
+    if(auto valid = retry(variant, &own_nodes, words, away)) return finished(*valid);
+    if(away && relocate) {
+      variant.node_relocation_sweeps = retry_sweeps;
+      const Retry_words relocated_words{moves, "the pants cut away from the holes with their nodes relocated",
+                                        "the pants are cut away from the holes and the layout's nodes relocated",
+                                        "with the shortest cuts the volume was not valid",
+                                        "the pants cut away from the holes with their nodes relocated were tried too and moved no node",
+                                        "relocating the nodes of the pants cut away from the holes failed", ", shortest cuts",
+                                        ", cuts away from holes, nodes relocated"};
+      if(auto valid = retry(variant, nullptr, relocated_words, away_relocated)) return finished(*valid);
+    }
   }
-  if(other->is_valid()) {
-    other->relocation_retried = true;
-    other->warnings.insert(other->warnings.begin(), "the layout's nodes are relocated (" +
-                                                      std::to_string(other->node_relocation.nodes_moved) +
-                                                      " moves): on the decomposition's own nodes the volume was not valid (" +
-                                                      internal::comma_list(model.invalidity_reasons()) + ")");
-    internal::prepend_stage_seconds(other->stage_seconds, model.stage_seconds, ", own nodes");
-    return finished(*other);
-  }
-  internal::append_stage_seconds(model.stage_seconds, other->stage_seconds, ", nodes relocated");
-  run_record.push_back("the layout's nodes relocated (" + std::to_string(other->node_relocation.nodes_moved) +
-                       " moves) were tried too and gave no valid volume (" + internal::comma_list(other->invalidity_reasons()) + ")");
-  model.warnings.push_back(run_record.back());
-  return nearest_attempt(&*other);
+  return nearest_attempt();
 }
 
 } // namespace Polycube_IGA

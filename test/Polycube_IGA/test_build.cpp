@@ -901,6 +901,56 @@ TEST_CASE("build's kept attempt says what the run's other layouts gave: the roto
   CHECK(std::count_if(model.warnings.begin(), model.warnings.end(), [](const std::string& w) { return w.find("polycube map") != std::string::npos; }) == 1);
 }
 
+TEST_CASE("build retries a closed surface's pants cut away from the holes and keeps the nearer to valid", "[build][away]")
+{
+  // On one grid of 8 without untangling or the other retries no volume is valid. The retry
+  // builds the layout of Pants_decomposition's `cuts_away_from_holes`, the same as asking for
+  // it, and keeps it only if it is nearer to valid; either way the run's record says what it
+  // gave. 3holes.obj (genus 3): its cuts move; 3torus.off (genus 3, 46 triangles): they stay
+  // where they were, and nothing is built again.
+  const auto quick = PI::parameters::grid_resolution(8).maximum_grid_resolution(8).minimum_grid_resolution(8).minimum_spline_degree(3)
+                       .grid_relaxation_sweeps(0).stretch_rounds(0).missing_part_cubes(0).untangle_volume(false)
+                       .node_relocation_retry(0).polycube_retry(false);
+  for(const char* file : {"3holes.obj", "3torus.off"}) {
+    INFO(file);
+    const Mesh m = load(data(file));
+    const auto shortest = PI::build_trivariate_model(m, quick.cuts_away_retry(false));
+    REQUIRE_FALSE(shortest.is_valid());
+    CHECK_FALSE(shortest.cuts_away_retried);
+    const auto away = PI::build_trivariate_model(m, quick.cuts_away_retry(false).cuts_away_from_holes(true));
+    CHECK_FALSE(away.cuts_away_retried);
+    REQUIRE(away.layout.layout_class == PI::Layout_class::pants);
+    const bool moved = PI::internal::node_points(away.layout) != PI::internal::node_points(shortest.layout);
+    CHECK(moved == (std::string(file) == "3holes.obj"));
+    const auto retried = PI::build_trivariate_model(m, quick);
+    CHECK(retried.cuts_away_retried);
+    CHECK(retried.is_valid() == away.is_valid());
+    auto said = [&](const std::string& begin, const std::string& then) {
+      return std::any_of(retried.warnings.begin(), retried.warnings.end(), [&](const std::string& w) {
+        return w.find(begin) == 0 && w.find(then) != std::string::npos;
+      });
+    };
+    if(!moved) {
+      CHECK(said("the pants cut away from the holes were tried too and gave the same layout", ""));
+      CHECK(PI::internal::node_points(retried.layout) == PI::internal::node_points(shortest.layout));
+      continue;
+    }
+    if(away.is_valid()) {
+      CHECK(PI::internal::node_points(retried.layout) == PI::internal::node_points(away.layout));
+      REQUIRE(!retried.warnings.empty());
+      CHECK(retried.warnings.front().find("the pants are cut away from the holes (") == 0);
+      continue;
+    }
+    const bool away_nearer = PI::internal::nearer_valid(away.volume, shortest.volume, retried.maximum_boundary_distance);
+    CHECK(PI::internal::node_points(retried.layout) == PI::internal::node_points(away_nearer ? away.layout : shortest.layout));
+    CHECK(said("the pants cut away from the holes (", " cuboids) were tried too and gave no valid volume ("));
+    REQUIRE(!retried.warnings.empty());
+    CHECK((retried.warnings.front().find("on the pants layout with the pants cut away from the holes") != std::string::npos) == away_nearer);
+  }
+  // Asked for from the start, the layout is not built again.
+  CHECK_FALSE(PI::build_trivariate_model(load(data("3torus.off")), quick.cuts_away_from_holes(true)).cuts_away_retried);
+}
+
 TEST_CASE("nearer_valid() ranks invalid volumes on different layouts: within the distance first, then the share uncertified or the distance", "[build]")
 {
   auto volume = [](std::size_t patches, std::size_t uncertified, double distance) {

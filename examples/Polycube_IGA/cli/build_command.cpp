@@ -122,6 +122,7 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
       .member("nodes_relocated", model.node_relocation.nodes_moved)
       .member("relocation_retried", model.relocation_retried)
       .member("polycube_retried", model.polycube_retried)
+      .member("cuts_away_retried", model.cuts_away_retried)
       .member("polycube_first", model.polycube_first)
       .member("relaxation_sweeps", V.relaxation.sweeps)
       .member("relaxation_last_move", V.relaxation.last_move)
@@ -233,7 +234,8 @@ void write_report(const std::string& path, const Input_mesh& in, const Model& mo
 int run_build(const Arguments& args)
 {
   Parsed_arguments a(args, {"--merge-duplicates", "--drop-isolated", "--no-self-intersection-test", "--allow-invalid", "--quiet",
-                      "--no-untangle", "--no-step-retry", "--balance-corners", "--no-chain", "--no-blocks", "--polycube", "--no-polycube-retry"},
+                      "--no-untangle", "--no-step-retry", "--balance-corners", "--no-chain", "--no-blocks", "--polycube", "--no-polycube-retry",
+                      "--cuts-away-from-holes", "--no-cuts-away-retry"},
                      {"-o", "--vtu", "--layout-vtu", "--layout-json", "--report", "--grid", "--degree", "--criterion",
                       "--boundary-layer", "--max-distance", "--max-refinements", "--max-grid", "--min-grid", "--min-degree", "--relax-sweeps", "--stretch-rounds", "--fold-bending",
                       "--sharp-boundary-turn", "--belt-phases", "--relax-arcs", "--relocate-nodes", "--relocation-retry", "--cut-pair-trials", "--missing-part-cubes",
@@ -295,6 +297,7 @@ int run_build(const Arguments& args)
       .maximum_refinements(refinements).maximum_grid_resolution(max_grid).minimum_grid_resolution(min_grid).minimum_spline_degree(min_degree)
       .grid_relaxation_sweeps(sweeps).stretch_rounds(stretch).fold_bending_weight(fold_bending).sharp_boundary_turn(sharp_turn).belt_phases(belt_phases)
       .step_retry(!a.has("--no-step-retry")).sphere_chain(!a.has("--no-chain")).orthogonal_blocks(!a.has("--no-blocks")).polycube_map(a.has("--polycube")).polycube_retry(!a.has("--no-polycube-retry")).polycube_first_alignment(polycube_first).arc_relaxation_sweeps(arc_sweeps).polycube_arc_relaxation_sweeps(polycube_arc_sweeps).node_relocation_sweeps(node_sweeps).node_relocation_retry(retry_sweeps).cut_pair_trials(pair_trials)
+      .cuts_away_from_holes(a.has("--cuts-away-from-holes")).cuts_away_retry(!a.has("--no-cuts-away-retry"))
       .missing_part_cubes(missing_part_cubes).balance_pants_corners(a.has("--balance-corners")).untangling_budget(untangling_budget).focused_sample_rounds(focused_rounds)
       // An invalid volume is not written without --allow-invalid: no time spent improving it.
       .untangle_invalid_result(a.has("--allow-invalid")),
@@ -371,6 +374,7 @@ Register_command build_command("build", {
   "                          [--polycube-first-alignment A] [--belt-phases K] [--no-step-retry] [--relax-arcs K]\n"
   "                          [--polycube-relax-arcs K]\n"
   "                          [--relocate-nodes K] [--relocation-retry K] [--cut-pair-trials K]\n"
+  "                          [--cuts-away-from-holes] [--no-cuts-away-retry]\n"
   "                          [--missing-part-cubes K] [--small-handle-length F] [--no-untangle]\n"
   "                          [--untangling-budget G] [--focused-samples K] [--balance-corners]\n"
   "                          [--allow-invalid]\n"
@@ -446,6 +450,13 @@ Register_command build_command("build", {
   "  --balance-corners  move each pants half's four centre nodes in its convex map to where their\n"
   "                    arcs meet at even angles on the mesh (default: where Tutte's rule puts\n"
   "                    them); the layout's corners improve, its volumes are not more often valid\n"
+  "  --cuts-away-from-holes  a closed surface's pants cuts keep away from the holes of the region\n"
+  "                    they cut, and its cycles are moved nearer the middle of their tubes:\n"
+  "                    through a CAD wheel's spokes and rim midway rather than at a junction;\n"
+  "                    on smooth shapes longer cuts and worse volumes (default: shortest cuts)\n"
+  "  --no-cuts-away-retry  a closed surface of genus 2 or more whose volume is not valid on any\n"
+  "                    layout above is by default built again with --cuts-away-from-holes,\n"
+  "                    kept if valid; this never does\n"
   "  --cut-pair-trials K  the pants stage traces the cuts around the K most promising pairs of\n"
   "                    holes at each step and takes the most promising one whose cut is within\n"
   "                    10% of the lightest (default 16; 1: the most promising pair alone)\n"

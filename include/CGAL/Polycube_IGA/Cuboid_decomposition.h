@@ -420,7 +420,8 @@ inline Piece_graph disk_graph(const std::array<std::size_t, 4>& corner, double a
 /// \ingroup PkgPolycubeIGARef
 /// Builds the polycube layout of a surface mesh (see the file comment). Named parameters:
 /// `surface_topology` (reuse a topology result), `cut_criterion`, `symmetry_plane`,
-/// `criterion_strength`, `cut_pair_trials` (passed to the pants stage), `maximum_refinements` (default 2:
+/// `criterion_strength`, `cut_pair_trials`, `cuts_away_from_holes` (passed to the pants stage),
+/// `maximum_refinements` (default 2:
 /// midpoint subdivisions of the whole mesh when a cut or arc finds no room), `belt_phase`
 /// (default 0, in [0, 1): on a closed genus-0 surface, how far the six belt nodes are moved
 /// along the belt, as a fraction of the zigzag's period, a third of the belt),
@@ -492,7 +493,8 @@ public:
               .cut_criterion(option(np, internal_np::cut_criterion, Cut_criterion::LENGTH))
               .symmetry_plane(option(np, internal_np::symmetry_plane, Cut_criterion_options().symmetry_plane))
               .criterion_strength(option(np, internal_np::criterion_strength, 1.0))
-              .cut_pair_trials(option(np, internal_np::cut_pair_trials, default_cut_pair_trials)));
+              .cut_pair_trials(option(np, internal_np::cut_pair_trials, default_cut_pair_trials))
+              .cuts_away_from_holes(option(np, internal_np::cuts_away_from_holes, false)));
     // Refinement keeps the shape, so the bounding box is the input's.
     const double diagonal = internal::mesh_bbox_diagonal(tm);
     std::shared_ptr<TriangleMesh> refined;

@@ -36,6 +36,7 @@ namespace Polycube_IGA {
   X(symmetry_plane_t, symmetry_plane)                                               \
   X(criterion_strength_t, criterion_strength)                                       \
   X(cut_pair_trials_t, cut_pair_trials)                                             \
+  X(cuts_away_from_holes_t, cuts_away_from_holes)                                   \
   X(surface_topology_t, surface_topology)                                           \
   /* cuboid decomposition */                                                        \
   X(belt_phase_t, belt_phase)                                                       \
@@ -74,6 +75,7 @@ namespace Polycube_IGA {
   X(node_relocation_retry_t, node_relocation_retry)                               \
   X(missing_part_cubes_t, missing_part_cubes)                                     \
   X(polycube_retry_t, polycube_retry)                                             \
+  X(cuts_away_retry_t, cuts_away_retry)                                           \
   X(polycube_first_alignment_t, polycube_first_alignment)                         \
   X(polycube_arc_relaxation_sweeps_t, polycube_arc_relaxation_sweeps)             \
   X(untangling_budget_t, untangling_budget)
