@@ -1221,7 +1221,7 @@ PI::Trivariate_model<Point> check_cube_for_missing_part(const Mesh& m, double of
 {
   auto options = [](int cubes) {
     return PI::parameters::missing_part_cubes(cubes).maximum_grid_resolution(16).minimum_grid_resolution(16).minimum_spline_degree(3)
-      .grid_relaxation_sweeps(0).stretch_rounds(0).untangle_volume(false).untangle_invalid_result(false);
+      .grid_relaxation_sweeps(0).stretch_rounds(0).untangle_volume(false).untangle_invalid_result(false).cuts_away_retry(false);
   };
   const auto plain = PI::build_trivariate_model(m, options(0));
   REQUIRE(plain.volume.quality_evaluated);
