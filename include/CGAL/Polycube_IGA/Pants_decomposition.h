@@ -817,17 +817,16 @@ private:
   // separates the one's other boundaries from the other's, in weights times
   // 1 + slope |2u - 1| (slope 1/2; 1 with cuts_away_from_holes), u the union's harmonic
   // function, 0 on the first pants' other boundaries and 1 on the second's (the level sets
-  // of §2.2.2's cutting curves). Why: the
-  // handle loops and cuts are shortest cycles, and along a tube of even section (a wheel's
-  // spokes and rim) the shortest runs where the mesh has a ring of edges, beside a junction:
-  // a wheel's pants then had their three boundaries at one junction, no room for the centre
-  // cuboid, and corners of 5 to 16 degrees (85 layout corners off by over 30 degrees, 18
-  // boundary sides turned over; moved, 21 and 9). The new cycle is kept when it costs at most
-  // 0.9 times the old one in those weights (a cycle already near the middle stays, the
-  // narrowest spot of a smooth tube too) and is at most 1.25 times as long. On closed
-  // surfaces only: with boundary loops, whose caps end tubes, mech-holes-shark.off (genus 0,
-  // 4 loops) lost its valid volume (17 of 38 patches uncertified), and a torus with holes
-  // has its own rule (weights_away_from() above).
+  // of §2.2.2's cutting curves). Why: the handle loops and cuts are shortest cycles, and
+  // along a tube of even section (a wheel's spokes and rim) the shortest runs where the mesh
+  // has a ring of edges, beside a junction: a wheel's pants then had their three boundaries
+  // at one junction, no room for the centre cuboid, and corners of 5 to 16 degrees (85
+  // layout corners off by over 30 degrees, 18 boundary sides turned over; moved, 21 and 9).
+  // The new cycle is kept when it costs at most 0.9 times the old one in those weights (a
+  // cycle already near the middle stays, the narrowest spot of a smooth tube too) and is at
+  // most 1.25 times as long. On closed surfaces only: with boundary loops, whose caps end
+  // tubes, mech-holes-shark.off (genus 0, 4 loops) lost its valid volume (17 of 38 patches
+  // uncertified), and a torus with holes has its own rule (weights_away_from() above).
   static void centre_cycles(const Graph& g, const std::vector<double>& w, double slope,
                             const std::vector<typename Pants_cycle<TriangleMesh>::Kind>& kinds,
                             const std::vector<std::array<int, 3>>& boundaries,
