@@ -207,9 +207,9 @@ TEST_CASE("the cycles of a wheel cut its spokes and rim midway between junctions
   // mesh has rings of edges, beside the junctions (the rim's cycles 2, 9 and 17 degrees
   // from a spoke, two spokes' cycles at their rim ends), and the pants there had no room
   // for a centre cuboid; moved to the middle of their tubes, each rim cycle is over 45
-  // degrees from every spoke and each spoke's cycle lies along its middle half.
-  // The cuts kept away from the holes, with the centring's doubled slope (the
-  // build's retry for closed surfaces), keep this.
+  // degrees from every spoke and each spoke's cycle lies along its middle half. The cuts
+  // kept away from the holes, with the centring's doubled slope (the build's last retry on
+  // closed surfaces), keep this.
   const bool away = GENERATE(false, true);
   INFO("cuts_away_from_holes " << away);
   const Mesh m = load(data("wheel3.off"));

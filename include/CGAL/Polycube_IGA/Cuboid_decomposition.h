@@ -421,8 +421,8 @@ inline Piece_graph disk_graph(const std::array<std::size_t, 4>& corner, double a
 /// Builds the polycube layout of a surface mesh (see the file comment). Named parameters:
 /// `surface_topology` (reuse a topology result), `cut_criterion`, `symmetry_plane`,
 /// `criterion_strength`, `cut_pair_trials`, `cuts_away_from_holes` (passed to the pants stage),
-/// `maximum_refinements` (default 2:
-/// midpoint subdivisions of the whole mesh when a cut or arc finds no room), `belt_phase`
+/// `maximum_refinements` (default 2: midpoint subdivisions of the whole mesh when a cut or arc
+/// finds no room), `belt_phase`
 /// (default 0, in [0, 1): on a closed genus-0 surface, how far the six belt nodes are moved
 /// along the belt, as a fraction of the zigzag's period, a third of the belt),
 /// `sphere_chain` (default false: a closed genus-0 surface is one cube; true: one long
