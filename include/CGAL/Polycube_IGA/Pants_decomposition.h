@@ -678,9 +678,11 @@ private:
       // as long, and the shortest ran beside one hole, leaving a pants with no room between its
       // boundaries (a torus with two opposite square holes: invalid at every grid; cut midway,
       // valid at the first). Not at genus 0 (mech-holes-shark.off 9 -> 2 uncertified, a star
-      // of five tubes 1 -> 2) nor at genus >= 2 (3holes.obj, ring4.off, chain6.off and
-      // plate6.off lost their valid volumes), unless asked (cuts_away_from_holes) on a closed
-      // surface, which keeps its handle loops' tubes whole: a CAD wheel's spokes.
+      // of five tubes 1 -> 2) nor, by default, at genus >= 2: with the centring's slope of 1/2,
+      // 3holes.obj, ring4.off, chain6.off and plate6.off lost their valid volumes. Asked for
+      // on a closed surface (cuts_away_from_holes), the centring's slope is doubled, those
+      // stay valid (smooth shapes' volumes are worse, though) and a CAD wheel's cuts run
+      // through the middle of its spokes and rim.
       std::vector<int> hole_vertices;
       if(genus_1_with_holes || (cuts_away && result.boundary_loops == 0))
         for(const Hole& h : holes)
