@@ -882,13 +882,8 @@ private:
             for(int v : g.face_vertices[f])
               if(u[v] < 0. && index[v] < 0) { index[v] = int(free.size()); free.push_back(v); }
         if(free.empty()) continue;
-        internal::Harmonic_extension system(free.size());
-        for(std::size_t i = 0; i < free.size(); ++i)
-          for(int a = g.offset[free[i]]; a < g.offset[free[i] + 1]; ++a) {
-            const int x = g.adjacent_vertex[a];
-            system.add_edge(int(i), index[x], cot[std::size_t(g.adjacent_edge[a])], std::max(u[x], 0.));
-          }
-        const Eigen::VectorXd x = system.solve("harmonic function of two pants");
+        const Eigen::VectorXd x =
+          internal::harmonic_extension(g, cot, free, index, [&](int v) { return std::max(u[std::size_t(v)], 0.); }, "harmonic function of two pants");
         for(std::size_t i = 0; i < free.size(); ++i) u[free[i]] = x(Eigen::Index(i));
         std::vector<double> w_cut(w);
         for(int e = 0; e < g.number_of_edges(); ++e) {

@@ -164,6 +164,24 @@ private:
   std::vector<Eigen::Triplet<double>> lower_;
 };
 
+/// The harmonic extension over the `free` vertices of `g` (`index`: each vertex's place in
+/// `free`, -1 for a fixed one) of the values `fixed_value(v)` at the fixed vertices next to
+/// them, edge `e` weighted by `weight[e]`: Harmonic_extension assembled from the graph's
+/// adjacency. Returns the free vertices' values, in the order of `free`.
+template <class Mesh_graph, class Fixed_value>
+Eigen::VectorXd harmonic_extension(const Mesh_graph& g, const std::vector<double>& weight, const std::vector<int>& free,
+                                   const std::vector<int>& index, const Fixed_value& fixed_value, const std::string& what)
+{
+  Harmonic_extension system(free.size());
+  for(std::size_t i = 0; i < free.size(); ++i)
+    for(int a = g.offset[std::size_t(free[i])]; a < g.offset[std::size_t(free[i]) + 1]; ++a) {
+      const int x = g.adjacent_vertex[std::size_t(a)];
+      const int j = index[std::size_t(x)];
+      system.add_edge(int(i), j, weight[std::size_t(g.adjacent_edge[std::size_t(a)])], j < 0 ? fixed_value(x) : 0.);
+    }
+  return system.solve(what);
+}
+
 } // namespace internal
 } // namespace Polycube_IGA
 } // namespace CGAL

@@ -216,14 +216,15 @@ std::vector<int> label_charts(const Mesh& m, const std::vector<int>& label, int*
 }
 
 /// The labels of the faces of `m` in `frame`: each face's nearest direction, smoothed by
-/// iterated conditional modes (a face takes the label of least area-weighted normal
-/// deviation plus `border_weight` times its border length, opposite labels never side by
-/// side), then charts smaller
-/// than `minimum_chart` of the area given to the neighbouring label they share the longest
-/// border with. Faces are visited in index order: the result is deterministic.
+/// iterated conditional modes when `border_weight` is positive (a face takes the label of
+/// least area-weighted normal deviation plus `border_weight` times its border length times
+/// the mean edge length, opposite labels side by side three times that, until no face
+/// changes), then charts smaller than `minimum_chart` of the area given to the neighbouring
+/// label they share the longest border with. Faces are visited in index order: the result
+/// is deterministic.
 template <class Mesh>
 std::vector<int> polycube_labels(const Mesh& m, const Eigen::Matrix3d& frame, const std::vector<Eigen::Vector3d>& normal,
-                                 const std::vector<double>& area, double border_weight = 1., double minimum_chart = 2e-3)
+                                 const std::vector<double>& area, double border_weight = 0., double minimum_chart = 2e-3)
 {
   const std::size_t nf = num_faces(m);
   std::vector<int> label(nf, 0);
@@ -244,11 +245,13 @@ std::vector<int> polycube_labels(const Mesh& m, const Eigen::Matrix3d& frame, co
   // A border between two labels costs its length times the mean edge length (an area);
   // between opposite labels three times that, a fold the polycube cannot have.
   auto pair_cost = [](int a, int b) { return a == b ? 0. : (a / 2 == b / 2 ? 3. : 1.); };
-  for(int sweep = 0; sweep < 50; ++sweep) {
+  for(int sweep = 0; sweep < 50 && border_weight > 0.; ++sweep) {
     bool changed = false;
     for(auto f : faces(m)) {
       const std::size_t i = std::size_t(f);
-      double best = std::numeric_limits<double>::infinity();
+      // The first label sets the bar: against infinity, the tolerance below is NaN and no
+      // face would ever change.
+      double best = 0.;
       int chosen = label[i];
       for(int l = 0; l < 6; ++l) {
         double e = area[i] * (1. - normal[i].dot(label_direction(frame, l)));
@@ -256,7 +259,7 @@ std::vector<int> polycube_labels(const Mesh& m, const Eigen::Matrix3d& frame, co
           const auto g = face(opposite(hh, m), m);
           if(g != Mesh::null_face()) e += border_weight * h * edge_length(hh) * pair_cost(l, label[std::size_t(g)]);
         }
-        if(e < best - 1e-15 * (1. + std::abs(best))) best = e, chosen = l;
+        if(l == 0 || e < best - 1e-15 * (1. + std::abs(best))) best = e, chosen = l;
       }
       if(chosen != label[i]) label[i] = chosen, changed = true;
     }
