@@ -1294,8 +1294,8 @@ TEST_CASE("the harmonic extension of the centring and the arc relaxation reprodu
 {
   // Cotangent weights have linear precision: on a flat mesh of acute triangles, the harmonic
   // extension of x + 2y from the border is x + 2y inside (internal::harmonic_extension(),
-  // the solve of Pants_decomposition's centring, and its Harmonic_extension, relax_arc()'s). Rows of equilateral
-  // triangles, every other row shifted by half an edge.
+  // the solve of Pants_decomposition's centring; its Harmonic_extension is relax_arc()'s).
+  // Rows of equilateral triangles, every other row shifted by half an edge.
   const int n = 12;
   std::vector<std::array<double, 3>> points;
   std::vector<Polygon> triangles;

@@ -249,17 +249,22 @@ std::vector<int> polycube_labels(const Mesh& m, const Eigen::Matrix3d& frame, co
     bool changed = false;
     for(auto f : faces(m)) {
       const std::size_t i = std::size_t(f);
-      // The first label sets the bar: against infinity, the tolerance below is NaN and no
-      // face would ever change.
-      double best = 0.;
-      int chosen = label[i];
-      for(int l = 0; l < 6; ++l) {
+      auto energy = [&](int l) {
         double e = area[i] * (1. - normal[i].dot(label_direction(frame, l)));
         for(auto hh : halfedges_around_face(halfedge(f, m), m)) {
           const auto g = face(opposite(hh, m), m);
           if(g != Mesh::null_face()) e += border_weight * h * edge_length(hh) * pair_cost(l, label[std::size_t(g)]);
         }
-        if(l == 0 || e < best - 1e-15 * (1. + std::abs(best))) best = e, chosen = l;
+        return e;
+      };
+      // The face's own label sets the bar, so a tie never changes it (against infinity, as
+      // once, the tolerance was NaN and no face ever changed).
+      double best = energy(label[i]);
+      int chosen = label[i];
+      for(int l = 0; l < 6; ++l) {
+        if(l == label[i]) continue;
+        const double e = energy(l);
+        if(e < best - 1e-15 * (1. + std::abs(best))) best = e, chosen = l;
       }
       if(chosen != label[i]) label[i] = chosen, changed = true;
     }
