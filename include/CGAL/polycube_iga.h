@@ -1118,38 +1118,14 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     model.warnings.insert(model.warnings.begin(), run_record.back());
   }
   if(model.is_valid()) return finished(model);
-  // A closed surface whose layout crosses the shape's own directions (a CAD part's round
-  // holes, fillets and slanted faces under harmonic cuts) may be valid on the boxes of a
-  // polycube map, which follow them.
-  if(option(np, internal_np::polycube_retry, true) && !polycube_given && !model.polycube_first &&
-     model.layout.layout_class != Layout_class::blocks && closed) {
-    model.polycube_retried = true;
-    std::string failure;
-    std::optional<Model> other = on_polycube_map(failure);
-    if(other && other->is_valid()) {
-      other->polycube_retried = true;
-      other->warnings.insert(other->warnings.begin(), "laid out on a polycube map (" + std::to_string(other->layout.cuboids.size()) +
-                                                        " boxes): the " + layout_class_name(model.layout.layout_class) +
-                                                        " layout's volume was not valid (" + internal::comma_list(model.invalidity_reasons()) + ")");
-      internal::prepend_stage_seconds(other->stage_seconds, model.stage_seconds, std::string(", ") + layout_class_name(model.layout.layout_class));
-      return finished(*other);
-    }
-    if(other) {
-      internal::append_stage_seconds(model.stage_seconds, other->stage_seconds, ", polycube map");
-      run_record.push_back("a layout on a polycube map (" + std::to_string(other->layout.cuboids.size()) +
-                           " boxes) was tried too and gave no valid volume (" + internal::comma_list(other->invalidity_reasons()) + ")");
-      polycube_attempt = std::move(other);
-    } else // empty only when it threw: build_on_layout() returns none for relocation variants alone
-      run_record.push_back("a layout on a polycube map was tried too and failed: " + failure);
-    model.warnings.push_back(run_record.back());
-  }
   // One more layout after those above gave no valid volume: returned if its volume is valid,
   // its first warning saying what it changed and why; otherwise the run's record says what it
-  // gave and `invalid` holds it for nearest_attempt().
+  // gave (so does a retry that throws) and `invalid` holds it for nearest_attempt().
   struct Retry_words
   {
     std::function<std::string(const Model&)> figures; // of the layout built
     std::string tried, valid, before, nothing, failed, own_suffix, suffix;
+    std::string tried_verb = "were"; // "was" after a singular `tried`
   };
   using Nodes = std::decay_t<decltype(internal::node_points(model.layout))>;
   auto retry = [&](const internal::Layout_variant& variant, const Nodes* unless_nodes,
@@ -1159,7 +1135,8 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
       other = internal::build_on_layout(tm, np, progress, budget, variant, false, false, unless_nodes);
       if(!other) model.warnings.push_back(words.nothing);
     } catch(const Error& e) {
-      model.warnings.push_back(words.failed + ": " + e.reason() + ": " + e.what());
+      run_record.push_back(words.failed + ": " + e.reason() + ": " + e.what());
+      model.warnings.push_back(run_record.back());
     }
     if(!other) return std::nullopt;
     if(other->is_valid()) {
@@ -1172,14 +1149,32 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
       return other;
     }
     internal::append_stage_seconds(model.stage_seconds, other->stage_seconds, words.suffix);
-    run_record.push_back(words.tried + " (" + words.figures(*other) + ") were tried too and gave no valid volume (" +
+    run_record.push_back(words.tried + " (" + words.figures(*other) + ") " + words.tried_verb + " tried too and gave no valid volume (" +
                          internal::comma_list(other->invalidity_reasons()) + ")");
     model.warnings.push_back(run_record.back());
     invalid = std::move(other);
     return std::nullopt;
   };
+  auto boxes = [](const Model& m) { return std::to_string(m.layout.cuboids.size()) + " boxes"; };
   auto moves = [](const Model& m) { return std::to_string(m.node_relocation.nodes_moved) + " moves"; };
   auto cuboids = [](const Model& m) { return std::to_string(m.layout.cuboids.size()) + " cuboids"; };
+  // A closed surface whose layout crosses the shape's own directions (a CAD part's round
+  // holes, fillets and slanted faces under harmonic cuts) may be valid on the boxes of a
+  // polycube map, which follow them.
+  if(option(np, internal_np::polycube_retry, true) && !polycube_given && !model.polycube_first &&
+     model.layout.layout_class != Layout_class::blocks && closed) {
+    model.polycube_retried = true;
+    internal::Layout_variant variant;
+    variant.polycube_map = true;
+    variant.sphere_chain = false;
+    const std::string layout_name = layout_class_name(model.layout.layout_class);
+    // build_on_layout() gives none for relocation variants alone: `nothing` is never said.
+    Retry_words words{boxes, "a layout on a polycube map", "laid out on a polycube map",
+                      "the " + layout_name + " layout's volume was not valid", "",
+                      "a layout on a polycube map was tried too and failed", ", " + layout_name, ", polycube map"};
+    words.tried_verb = "was";
+    if(auto valid = retry(variant, nullptr, words, polycube_attempt)) return finished(*valid);
+  }
   // The decomposition puts nodes where the harmonic cuts and the conformal map say, blind to
   // the corners they make; a node amid a flat face or a spoke along a rim folds a face
   // (mech-holes-shark.off: 8 of 38 patches uncertified on its own nodes; relocated, valid).
