@@ -524,10 +524,11 @@ std::vector<std::pair<Eigen::Vector2d, double>> star_heights(const CGAL::Surface
 
 /// Moves each free coordinate of the vertices near the faces that `q` turns over to the
 /// point deepest inside its star's kernel (the Chebyshev centre of the half-planes of
-/// star_heights(), bounded by its neighbours' box), when that is deeper than where it is:
-/// a vertex whose neighbours all lie on a chart's reflex border (the middle of an edge that
-/// cut a fillet's corner) is then set inside the corner, where averaging puts it on the
-/// border. A move never turns more faces of its star over. Returns whether no face is turned.
+/// star_heights(), bounded softly by its neighbours' box), when that is deeper than where
+/// it is: a vertex whose neighbours all lie on a chart's reflex border (the middle of an
+/// edge that cut a fillet's corner) is then set inside the corner, where averaging puts it
+/// on the border. A move never turns more faces of its star over. Returns whether no face
+/// is turned.
 template <class P>
 bool untangle_polycube(const CGAL::Surface_mesh<P>& m, const std::vector<int>& label, std::vector<Eigen::Vector3d>& q, int sweeps = 50)
 {
@@ -561,6 +562,13 @@ bool untangle_polycube(const CGAL::Surface_mesh<P>& m, const std::vector<int>& l
       for(const auto& r : rows) now = std::min(now, r.first.dot(x) + r.second);
       const std::size_t faces = rows.size();
       // The neighbours' box keeps an unbounded kernel (a convex corner) from sending it off.
+      // Its sides are rows like the faces' (x - lo >= t): a star still turned (t < 0) may
+      // leave the box by its depth, and sweeps can carry a vertex far off (a probe's labels
+      // on a remeshed anchor.off: ten times the part's size), which is_polycube() refuses.
+      // A hard box (x >= lo) left more faces turned on 13 of the 17 refused maps of the test
+      // and benchmark meshes (anchor.off 438 -> 531; fewer only on cad_spoked_wheel.off,
+      // 5871 -> 139, and cad_tee_solid.off, 32 -> 18; none became a polycube) and moved the
+      // vertices of 3 of the 17 polycubes, so the box stays soft.
       Eigen::Vector2d lo = x, hi = x;
       for(V w : vertices_around_target(halfedge(v, m), m))
         for(int i = 0; i < dim; ++i)
