@@ -7,6 +7,7 @@
 // volumes holds (no volume file unless --allow-invalid, the report always says why).
 
 #include "test_support.h"
+#include "vtu_text.h"
 
 #include <CGAL/Polycube_IGA/IO/gismo_xml.h>
 #include <CGAL/polycube_iga.h>
@@ -31,7 +32,6 @@ using namespace test_support;
 namespace PI = CGAL::Polycube_IGA;
 
 namespace {
-bool exists(const std::string& path) { return std::ifstream(path).good(); }
 
 /// A valid build: every certified det J bound positive, the smallest sampled scaled
 /// Jacobian above `min_scaled`, the boundary within `max_distance` of the bounding-box
@@ -1053,6 +1053,51 @@ TEST_CASE("build CLI lays a closed surface out on a polycube map with --polycube
   const std::string none = temp_path("open_plate.xml");
   const Cli_result bad = run_cli("build '" + open + "' -o '" + none + "' --polycube --quiet");
   CHECK(bad.exit_code != 0);
+  CHECK(bad.err.find("wrong_topology") != std::string::npos);
+  CHECK(!exists(none));
+}
+
+TEST_CASE("polycube CLI shows the map: the filleted T's 4 boxes, the faces anchor.off's deformation turns over", "[build][cli][polycube]")
+{
+  auto json_integer = [](const std::string& text, const std::string& key) {
+    const std::size_t at = text.find("\"" + key + "\":");
+    return at == std::string::npos ? -1L : std::stol(text.substr(at + key.size() + 3));
+  };
+  const std::string vtu = temp_path("t_map.vtu"), deformed = temp_path("t_map_deformed.vtu");
+  const Cli_result t = run_cli("polycube '" + data("t_block_filleted.off") + "' --json --vtk '" + vtu + "' --deformed '" + deformed + "'");
+  CHECK(t.exit_code == 0);
+  CHECK(t.out.find("\"polycube\":true") != std::string::npos);
+  CHECK(json_integer(t.out, "faces_turned") == 0);
+  CHECK(json_integer(t.out, "boxes") == 4);
+  CHECK(t.out.find("\"refusal\":\"\"") != std::string::npos);
+  {
+    const std::string xml = file_text(vtu);
+    CHECK(xml_tags_balance(xml));
+    const std::vector<long> label = integers(xml, "label"), turned = integers(xml, "turned");
+    CHECK(long(label.size()) == json_integer(t.out, "faces"));
+    CHECK(std::all_of(label.begin(), label.end(), [](long l) { return l >= 0 && l < 6; }));
+    CHECK(std::set<long>(label.begin(), label.end()).size() == 6); // a T faces every way
+    CHECK(std::count(turned.begin(), turned.end(), 1L) == 0);
+    // The deformed surface is the polycube: every face's normal along its label's axis.
+    const std::string d = file_text(deformed);
+    CHECK(integers(d, "label") == label);
+    CHECK(attribute(d, "Piece", "NumberOfPoints") == attribute(xml, "Piece", "NumberOfPoints"));
+  }
+  // anchor.off's slanted lug: labels no deformation flattens. The files are written all the
+  // same, and the turned faces in them are those counted.
+  const std::string avtu = temp_path("anchor_map.vtu");
+  const Cli_result r = run_cli("polycube '" + data("anchor.off") + "' --json --vtk '" + avtu + "'");
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("no_polycube_map: the surface deformed to its labels is not a polycube") != std::string::npos);
+  CHECK(r.out.find("\"polycube\":false") != std::string::npos);
+  const long turned = json_integer(r.out, "faces_turned");
+  CHECK(turned > 0);
+  const std::vector<long> flags = integers(file_text(avtu), "turned");
+  CHECK(std::count(flags.begin(), flags.end(), 1L) == turned);
+  // A surface with a boundary is named and nothing is written.
+  const std::string open = write_text("open_plate_map.off", voxel_plate_with(1, 1)), none = temp_path("open_map.vtu");
+  const Cli_result bad = run_cli("polycube '" + open + "' --vtk '" + none + "'");
+  CHECK(bad.exit_code == 2);
   CHECK(bad.err.find("wrong_topology") != std::string::npos);
   CHECK(!exists(none));
 }

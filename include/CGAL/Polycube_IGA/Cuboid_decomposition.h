@@ -914,22 +914,20 @@ private:
       if(why) *why = reason;
       return std::nullopt;
     };
-    const auto [normal, area] = face_normals_and_areas(m);
-    const Eigen::Matrix3d frame = polycube_frame(m, normal, area);
-    // The nearest directions, small charts merged, not smoothed: a fillet's border then lies
-    // on its 45-degree line. Smoothed at border weight 1 (the plate with six filleted round
-    // holes of the benchmark corpus: 2 of 150 patches uncertified, valid before; the T with
-    // filleted edges: min scaled Jacobian 0.23 -> 0.06), the volumes were worse on the whole,
-    // and no refused map became a polycube (anchor.off: 438 -> 195 faces turned).
-    std::vector<int> label = polycube_labels(m, frame, normal, area, 0.);
-    split_edges_between_borders(m, label);
-    std::string not_polycube;
-    const std::optional<std::vector<Eigen::Vector3d>> position = polycube_positions(m, frame, label, 0.05, &not_polycube);
-    if(!position) return fail("the surface deformed to its labels is not a polycube: " + not_polycube);
+    // The nearest directions, small charts merged, not smoothed (polycube_map_attempt()): a
+    // fillet's border then lies on its 45-degree line. Smoothed at border weight 1 (the plate
+    // with six filleted round holes of the benchmark corpus: 2 of 150 patches uncertified,
+    // valid before; the T with filleted edges: min scaled Jacobian 0.23 -> 0.06), the volumes
+    // were worse on the whole, and no refused map became a polycube (anchor.off: 438 -> 195
+    // faces turned).
+    Polycube_map_attempt<Point> attempt = polycube_map_attempt(std::move(m));
+    if(!attempt.position) return fail("the surface deformed to its labels is not a polycube: " + attempt.why);
+    m = std::move(attempt.mesh);
+    const std::vector<Eigen::Vector3d>& position = *attempt.position;
     auto original = m.template add_property_map<V, Point>("v:original_point").first;
     for(V v : vertices(m)) {
       original[v] = m.point(v);
-      const Eigen::Vector3d& p = (*position)[std::size_t(v)];
+      const Eigen::Vector3d& p = position[std::size_t(v)];
       m.point(v) = Point(p.x(), p.y(), p.z());
     }
     std::string boxes;

@@ -652,11 +652,12 @@ bool is_polycube(const CGAL::Surface_mesh<P>& m, const std::vector<int>& label, 
 /// `frame`: polycube_axis() for each axis, then again with the charts that face one way
 /// within `snap` of the polycube's extent along their axis on one plane, if that is still a
 /// polycube. Empty when neither is (is_polycube(), whose reason for the unsnapped one goes
-/// to `why`).
+/// to `why`, and its positions, in the frame, to `refused`).
 template <class P>
 std::optional<std::vector<Eigen::Vector3d>> polycube_positions(const CGAL::Surface_mesh<P>& m, const Eigen::Matrix3d& frame,
                                                                const std::vector<int>& label, double snap = 0.05,
-                                                               std::string* why = nullptr)
+                                                               std::string* why = nullptr,
+                                                               std::vector<Eigen::Vector3d>* refused = nullptr)
 {
   const std::size_t nv = num_vertices(m);
   std::vector<Eigen::Vector3d> x0(nv);
@@ -709,10 +710,55 @@ std::optional<std::vector<Eigen::Vector3d>> polycube_positions(const CGAL::Surfa
   if(!snapped[0].empty() && !snapped[1].empty() && !snapped[2].empty()) q = positions(snapped);
   if(q.empty() || !is_polycube(m, label, q)) {
     q = positions(free);
-    if(!is_polycube(m, label, q, why)) return std::nullopt;
+    if(!is_polycube(m, label, q, why)) {
+      if(refused) *refused = std::move(q);
+      return std::nullopt;
+    }
   }
   for(auto& p : q) p = frame.transpose() * p;
   return q;
+}
+
+/// A polycube map of the closed surface `mesh` as the cuboid decomposition makes it, step by
+/// step, for Cuboid_decomposition::polycube_blocks() and for showing why a map is refused
+/// (`polycube_iga polycube`): the frame and the faces' alignment with it, the nearest
+/// labels with small charts merged (not smoothed: see polycube_blocks()), the mesh with the
+/// edges between chart borders split, and the polycube positions, or the reason there are
+/// none and the faces the deformation left turned over or flat.
+template <class P>
+struct Polycube_map_attempt
+{
+  CGAL::Surface_mesh<P> mesh; ///< the input with the edges between borders split
+  Eigen::Matrix3d frame;      ///< rows: the axes
+  double alignment = 0.;      ///< frame_alignment() of the input's faces
+  std::vector<int> label;     ///< by face of `mesh`: axis 2k (+) or 2k + 1 (-)
+  int charts = 0;             ///< label_charts() count
+  std::optional<std::vector<Eigen::Vector3d>> position; ///< world coordinates, by vertex
+  std::vector<Eigen::Vector3d> refused_position; ///< world coordinates, when `position` is empty
+  std::vector<bool> turned; ///< by face, of `refused_position`
+  std::string why;          ///< when `position` is empty
+};
+
+template <class P>
+Polycube_map_attempt<P> polycube_map_attempt(CGAL::Surface_mesh<P> mesh)
+{
+  Polycube_map_attempt<P> a;
+  const auto [normal, area] = face_normals_and_areas(mesh);
+  a.frame = polycube_frame(mesh, normal, area);
+  a.alignment = frame_alignment(a.frame, normal, area);
+  a.label = polycube_labels(mesh, a.frame, normal, area, 0.);
+  split_edges_between_borders(mesh, a.label);
+  label_charts(mesh, a.label, &a.charts);
+  std::vector<Eigen::Vector3d> refused;
+  a.position = polycube_positions(mesh, a.frame, a.label, 0.05, &a.why, &refused);
+  if(!a.position && !refused.empty()) {
+    a.turned.assign(num_faces(mesh), false);
+    for(auto f : turned_faces(mesh, a.label, refused)) a.turned[std::size_t(f)] = true;
+    for(auto& p : refused) p = a.frame.transpose() * p;
+    a.refused_position = std::move(refused);
+  }
+  a.mesh = std::move(mesh);
+  return a;
 }
 
 } // namespace internal
