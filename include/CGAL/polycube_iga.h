@@ -1031,11 +1031,12 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
     return std::move(m);
   };
   using Model = std::decay_t<decltype(*internal::build_on_layout(tm, np, progress, budget, internal::Layout_variant(), false, false, nullptr))>;
+  // The layout on the boxes of a polycube map, tried first or retried below.
+  internal::Layout_variant on_polycube;
+  on_polycube.polycube_map = true;
+  on_polycube.sphere_chain = false;
   // The volume on the boxes of a polycube map; empty, with the reason, when it makes none.
   auto on_polycube_map = [&](std::string& failure) {
-    internal::Layout_variant on_polycube;
-    on_polycube.polycube_map = true;
-    on_polycube.sphere_chain = false;
     std::optional<Model> result;
     try {
       result = internal::build_on_layout(tm, np, progress, budget, on_polycube, false, false, nullptr);
@@ -1164,16 +1165,13 @@ auto build_trivariate_model(const TriangleMesh& tm, const NamedParameters& np = 
   if(option(np, internal_np::polycube_retry, true) && !polycube_given && !model.polycube_first &&
      model.layout.layout_class != Layout_class::blocks && closed) {
     model.polycube_retried = true;
-    internal::Layout_variant variant;
-    variant.polycube_map = true;
-    variant.sphere_chain = false;
     const std::string layout_name = layout_class_name(model.layout.layout_class);
     // build_on_layout() gives none for relocation variants alone: `nothing` is never said.
     Retry_words words{boxes, "a layout on a polycube map", "laid out on a polycube map",
                       "the " + layout_name + " layout's volume was not valid", "",
                       "a layout on a polycube map was tried too and failed", ", " + layout_name, ", polycube map"};
     words.tried_verb = "was";
-    if(auto valid = retry(variant, nullptr, words, polycube_attempt)) return finished(*valid);
+    if(auto valid = retry(on_polycube, nullptr, words, polycube_attempt)) return finished(*valid);
   }
   // The decomposition puts nodes where the harmonic cuts and the conformal map say, blind to
   // the corners they make; a node amid a flat face or a spoke along a rim folds a face

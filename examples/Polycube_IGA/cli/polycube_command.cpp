@@ -27,10 +27,10 @@ namespace {
 
 namespace PI = CGAL::Polycube_IGA;
 
-/// The surface at `position` (by vertex) with cell data label (0 to 5: axis 2k along,
-/// 2k + 1 against), chart and turned (1 for a face the deformation left turned over or flat).
+/// The surface at `points` (by vertex) with cell data label (0 to 5: axis 2k along, 2k + 1
+/// against), chart and turned (1 for a face the deformation left turned over or flat).
 void write_map_vtu(const std::string& path, const PI::internal::Polycube_map_attempt<Point>& a,
-                   const std::vector<Eigen::Vector3d>& position)
+                   const std::vector<std::array<double, 3>>& points)
 {
   namespace pii = PI::internal;
   const Mesh& m = a.mesh;
@@ -42,8 +42,6 @@ void write_map_vtu(const std::string& path, const PI::internal::Polycube_map_att
     const int type = cells.append_face(m, f, vim);
     cells.close_cell(type, {a.label[i], chart[i], !a.turned.empty() && a.turned[i] ? 1 : 0});
   }
-  std::vector<std::array<double, 3>> points(position.size());
-  for(std::size_t v = 0; v < position.size(); ++v) points[v] = {{position[v].x(), position[v].y(), position[v].z()}};
   pii::write_file_atomically(path, [&](std::ostream& os) { pii::write_vtu(os, points, cells); });
 }
 
@@ -73,16 +71,15 @@ int run_polycube(const Arguments& args)
       refusal = e.what();
     }
   }
-  std::vector<Eigen::Vector3d> at(num_vertices(map.mesh));
-  for(auto v : vertices(map.mesh)) {
-    const Point& p = map.mesh.point(v);
-    at[std::size_t(v)] = Eigen::Vector3d(p.x(), p.y(), p.z());
-  }
-  if(a.has("--vtk")) write_map_vtu(a.get("--vtk"), map, at);
+  if(a.has("--vtk")) write_map_vtu(a.get("--vtk"), map, PI::internal::vtu_points(map.mesh));
   if(a.has("--deformed")) {
     const std::vector<Eigen::Vector3d>& deformed = map.position ? *map.position : map.refused_position;
-    if(deformed.size() == at.size()) write_map_vtu(a.get("--deformed"), map, deformed);
-    else std::cerr << "warning: --deformed not written: the deformation's solve failed\n";
+    if(deformed.size() == num_vertices(map.mesh)) {
+      std::vector<std::array<double, 3>> points(deformed.size());
+      for(std::size_t v = 0; v < deformed.size(); ++v) points[v] = {{deformed[v].x(), deformed[v].y(), deformed[v].z()}};
+      write_map_vtu(a.get("--deformed"), map, points);
+    } else
+      std::cerr << "warning: --deformed not written: the deformation's solve failed\n";
   }
 
   if(a.has("--json")) {
