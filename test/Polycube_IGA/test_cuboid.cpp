@@ -754,6 +754,89 @@ TEST_CASE("a polycube map is refused with a reason: a surface with a boundary, l
   }
 }
 
+TEST_CASE("a polycube map refused on the nearest labels is made on graph-cut labels: 3holes.obj's boxes", "[cuboid][polycube]")
+{
+  // 3holes.obj (genus 3): deformed to its nearest labels, faces turn over; graph-cut labels
+  // at border weight 0.01 join the strips that alternate between two labels and make a
+  // polycube, whose boxes are a layout of the surface.
+  const Mesh m = load(data("3holes.obj"));
+  const auto [normal, area] = PI::internal::face_normals_and_areas(m);
+  const Eigen::Matrix3d frame = PI::internal::polycube_frame(m, normal, area);
+  {
+    Mesh nearest_mesh = m;
+    std::vector<int> nearest = PI::internal::polycube_labels(nearest_mesh, frame, normal, area, 0.);
+    PI::internal::split_edges_between_borders(nearest_mesh, nearest);
+    CHECK(!PI::internal::polycube_positions(nearest_mesh, frame, nearest));
+  }
+  const PI::internal::Polycube_map_attempt<Point> a = PI::internal::polycube_map_attempt(m);
+  REQUIRE(a.position);
+  CHECK(a.border_weight == 0.01);
+  CHECK(a.frame == frame);
+  CHECK(a.turned.empty());
+  REQUIRE(a.position->size() == num_vertices(a.mesh));
+  REQUIRE(a.label.size() == num_faces(a.mesh));
+  // The deformed surface is a polycube: every face flat on its chart's plane, facing its label.
+  for(auto f : faces(a.mesh)) {
+    std::array<Eigen::Vector3d, 3> x;
+    std::size_t i = 0;
+    for(auto v : vertices_around_face(halfedge(f, a.mesh), a.mesh)) x[i++] = frame * (*a.position)[std::size_t(v)];
+    const Eigen::Vector3d n = (x[1] - x[0]).cross(x[2] - x[0]);
+    const int l = a.label[std::size_t(f)];
+    CHECK(n[l / 2] * (l % 2 ? -1. : 1.) > 0.);
+    CHECK(std::abs(x[1][l / 2] - x[0][l / 2]) + std::abs(x[2][l / 2] - x[0][l / 2]) < 1e-6);
+  }
+  const Layout L = PI::Cuboid_decomposition<Mesh>()(m, PI::parameters::polycube_map(true));
+  CHECK(L.layout_class == PI::Layout_class::polycube);
+  CHECK(L.genus == 3);
+  check_layout(m, L);
+}
+
+TEST_CASE("graph-cut labels lower the labelling energy below the nearest labels, and no face alone lowers it", "[cuboid][polycube]")
+{
+  // The energy of expansion_labels(): each face's area times (1 - its normal . its label's
+  // direction), plus each border's length times the weight times the square root of the
+  // area, twice that between opposite labels. An expansion move may change any set of faces
+  // to one label, a single face among them, so at its fixed point no face gains alone.
+  for(const char* name : {"anchor.off", "eight.off"}) {
+    INFO(name);
+    const Mesh m = load(data(name));
+    const auto [normal, area] = PI::internal::face_normals_and_areas(m);
+    const Eigen::Matrix3d frame = PI::internal::polycube_frame(m, normal, area);
+    const double weight = 0.01;
+    const std::vector<int> label = PI::internal::expansion_labels(m, frame, normal, area, weight, 0.); // no chart merged
+    const std::vector<int> nearest = PI::internal::polycube_labels(m, frame, normal, area, 0., 0.);
+    double total_area = 0.;
+    for(double x : area) total_area += x;
+    const double scale = weight * std::sqrt(total_area);
+    auto pair_cost = [](int a, int b) { return a == b ? 0. : (a / 2 == b / 2 ? 2. : 1.); };
+    auto deviation = [&](Mesh::Face_index f, int l) {
+      return area[std::size_t(f)] * (1. - normal[std::size_t(f)].dot(PI::internal::label_direction(frame, l)));
+    };
+    auto border = [&](const std::vector<int>& lab, Mesh::Face_index f, int l) {
+      double e = 0.;
+      for(auto hh : halfedges_around_face(halfedge(f, m), m))
+        e += scale * std::sqrt(CGAL::squared_distance(m.point(source(hh, m)), m.point(target(hh, m)))) *
+             pair_cost(l, lab[std::size_t(face(opposite(hh, m), m))]);
+      return e;
+    };
+    auto energy = [&](const std::vector<int>& lab) {
+      double e = 0.;
+      for(auto f : faces(m)) e += deviation(f, lab[std::size_t(f)]) + 0.5 * border(lab, f, lab[std::size_t(f)]);
+      return e;
+    };
+    CHECK(energy(label) < energy(nearest));
+    int gains = 0;
+    for(auto f : faces(m)) {
+      const double now = deviation(f, label[std::size_t(f)]) + border(label, f, label[std::size_t(f)]);
+      for(int l = 0; l < 6; ++l)
+        if(deviation(f, l) + border(label, f, l) < now - 1e-12 * (1. + now)) ++gains;
+    }
+    CHECK(gains == 0);
+    // Deterministic: the same labels again.
+    CHECK(PI::internal::expansion_labels(m, frame, normal, area, weight, 0.) == label);
+  }
+}
+
 TEST_CASE("a polycube frame across round sides follows the shape's extent, across flat sides the sides", "[cuboid][polycube]")
 {
   // A body of revolution's side facets make no direction hold more area than another (a

@@ -90,6 +90,7 @@ int run_polycube(const Arguments& args)
       .member("alignment", map.alignment)
       .member("faces", num_faces(map.mesh))
       .member("charts", map.charts)
+      .member("label_border_weight", map.border_weight)
       .member("polycube", bool(map.position))
       .member("faces_turned", turned)
       .member("boxes", layout ? layout->cuboids.size() : std::size_t(0))
@@ -106,7 +107,9 @@ int run_polycube(const Arguments& args)
     for(int r = 0; r < 3; ++r)
       std::cout << (r ? ", (" : " (") << shown(map.frame(r, 0)) << " " << shown(map.frame(r, 1)) << " " << shown(map.frame(r, 2)) << ")";
     std::cout << "; alignment " << map.alignment << "\n" << num_faces(map.mesh) << " faces (edges between chart borders split), "
-              << map.charts << " charts\n";
+              << map.charts << " charts, ";
+    if(map.border_weight > 0.) std::cout << "graph-cut labels at border weight " << map.border_weight << "\n";
+    else std::cout << "the nearest labels\n";
     if(layout) std::cout << "a polycube: " << layout->cuboids.size() << " boxes, " << layout->patches.size() << " patches\n";
     else if(map.position) std::cout << "a polycube, but " << refusal << "\n";
     else std::cout << "not a polycube: " << map.why << "\n";
@@ -120,10 +123,12 @@ Register_command polycube_command("polycube", {
   "usage: polycube_iga polycube MESH [--json] [--vtk OUT.vtu] [--deformed OUT.vtu]\n"
   "  The map the build tries (--polycube, its first attempt for CAD parts, its retry):\n"
   "  faces labelled with the nearest of the six directions of a frame, small charts merged,\n"
-  "  the surface deformed until each chart is planar, the polycube split into boxes.\n"
-  "  --json        {frame: [3 axes], alignment, faces, charts, polycube, faces_turned, boxes,\n"
-  "                refusal}: polycube says whether the deformation is one; refusal is empty\n"
-  "                when the boxes make a layout\n"
+  "  the surface deformed until each chart is planar, the polycube split into boxes; when\n"
+  "  those labels make no polycube, graph-cut labels at border weights 0.01 and 0.02.\n"
+  "  --json        {frame: [3 axes], alignment, faces, charts, label_border_weight (0: the\n"
+  "                nearest labels), polycube, faces_turned, boxes, refusal}: polycube says\n"
+  "                whether the deformation is one; refusal is empty when the boxes make a\n"
+  "                layout; a refused map shows the nearest labels\n"
   "  --vtk OUT.vtu the surface (edges between chart borders split) with cell data label\n"
   "                (0 to 5: axis k along 2k, against 2k + 1), chart, and turned (1: a face\n"
   "                the deformation left turned over or flat)\n"

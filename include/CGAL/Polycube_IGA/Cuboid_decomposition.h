@@ -919,8 +919,8 @@ private:
     // with six filleted round holes of the benchmark corpus: 2 of 150 patches uncertified,
     // valid before; the T with filleted edges: min scaled Jacobian 0.23 -> 0.06), the volumes
     // were worse on the whole, and no refused map became a polycube (anchor.off: 438 -> 195
-    // faces turned).
-    Polycube_map_attempt<Point> attempt = polycube_map_attempt(std::move(m));
+    // faces turned). Graph-cut labels at a smaller weight come only when these are refused.
+    Polycube_map_attempt<Point> attempt = polycube_map_attempt(m);
     if(!attempt.position) return fail("the surface deformed to its labels is not a polycube: " + attempt.why);
     m = std::move(attempt.mesh);
     const std::vector<Eigen::Vector3d>& position = *attempt.position;
