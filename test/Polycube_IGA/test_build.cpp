@@ -1090,6 +1090,9 @@ TEST_CASE("polycube CLI shows the map: the filleted T's 4 boxes, the faces ancho
   CHECK(r.exit_code == 1);
   CHECK(r.err.find("no_polycube_map: the surface deformed to its labels is not a polycube") != std::string::npos);
   CHECK(r.out.find("\"polycube\":false") != std::string::npos);
+  // Graph-cut labels were tried too; what is shown is the nearest labels' map.
+  CHECK(r.err.find("with graph-cut labels at border weight 0.02") != std::string::npos);
+  CHECK(r.out.find("\"label_border_weight\":0,") != std::string::npos);
   const long turned = json_integer(r.out, "faces_turned");
   CHECK(turned > 0);
   const std::vector<long> flags = integers(file_text(avtu), "turned");
