@@ -324,7 +324,7 @@ std::vector<int> polycube_labels(const Mesh& m, const Eigen::Matrix3d& frame, co
 /// edges': on a coarse mesh (joint.off, 446 faces) the mean edge length made every border
 /// dearer than any chart and left one label. Charts smaller than `minimum_chart` of the area
 /// are then merged (merge_small_charts()). Deterministic: moves in label order, cycles until
-/// none lowers the energy.
+/// none lowers the energy (at most 10).
 template <class Mesh>
 std::vector<int> expansion_labels(const Mesh& m, const Eigen::Matrix3d& frame, const std::vector<Eigen::Vector3d>& normal,
                                   const std::vector<double>& area, double border_weight, double minimum_chart = 2e-3)
@@ -822,8 +822,9 @@ std::optional<std::vector<Eigen::Vector3d>> polycube_positions(const CGAL::Surfa
 /// 0.02: eight.off 39 -> 10 -> 3, ring4.off 25 -> 10 -> 5, chain5.off 22 -> 3 -> 13,
 /// rotor.off 34 -> 14 -> 65, anchor.off 438 -> 239 -> 265, fandisk.off 25 -> 169 -> 190,
 /// femur.off 4468 -> 228 -> 203 (weights 0.03 to 0.06, on five of them, made one more:
-/// torus.obj at 0.06). A refused map costs up to 4 times the nearest labels' alone
-/// (anchor.off 1.5 -> 6.0 s).
+/// torus.obj at 0.06). A refused map costs more, by up to 47 times the nearest labels'
+/// alone (wheel3.off 0.08 -> 3.9 s, chain6.off 0.5 -> 8.8 s, anchor.off 1.2 -> 3.1 s;
+/// `polycube_iga_benchmark polycube`); a map that is a polycube on them costs the same.
 template <class P>
 struct Polycube_map_attempt
 {
@@ -839,35 +840,42 @@ struct Polycube_map_attempt
   std::string why;          ///< when `position` is empty: the nearest labels' reason, then the others'
 };
 
+/// One polycube map of `input` in `frame` (its faces' `normal` and `area` given): the nearest
+/// labels when `border_weight` is 0, else expansion_labels() at that weight.
+template <class P>
+Polycube_map_attempt<P> polycube_map_on_labels(const CGAL::Surface_mesh<P>& input, const Eigen::Matrix3d& frame,
+                                               const std::vector<Eigen::Vector3d>& normal, const std::vector<double>& area,
+                                               double border_weight)
+{
+  Polycube_map_attempt<P> a;
+  a.frame = frame;
+  a.alignment = frame_alignment(frame, normal, area);
+  a.border_weight = border_weight;
+  a.mesh = input;
+  a.label = border_weight > 0. ? expansion_labels(a.mesh, frame, normal, area, border_weight)
+                               : polycube_labels(a.mesh, frame, normal, area, 0.);
+  split_edges_between_borders(a.mesh, a.label);
+  label_charts(a.mesh, a.label, &a.charts);
+  std::vector<Eigen::Vector3d> refused;
+  a.position = polycube_positions(a.mesh, frame, a.label, 0.05, &a.why, &refused);
+  if(!a.position && !refused.empty()) {
+    a.turned.assign(num_faces(a.mesh), false);
+    for(auto f : turned_faces(a.mesh, a.label, refused)) a.turned[std::size_t(f)] = true;
+    for(auto& p : refused) p = frame.transpose() * p;
+    a.refused_position = std::move(refused);
+  }
+  return a;
+}
+
 template <class P>
 Polycube_map_attempt<P> polycube_map_attempt(const CGAL::Surface_mesh<P>& input)
 {
   const auto [normal, area] = face_normals_and_areas(input);
   const Eigen::Matrix3d frame = polycube_frame(input, normal, area);
-  auto attempt = [&](double border_weight) {
-    Polycube_map_attempt<P> a;
-    a.frame = frame;
-    a.alignment = frame_alignment(frame, normal, area);
-    a.border_weight = border_weight;
-    a.mesh = input;
-    a.label = border_weight > 0. ? expansion_labels(a.mesh, frame, normal, area, border_weight)
-                                 : polycube_labels(a.mesh, frame, normal, area, 0.);
-    split_edges_between_borders(a.mesh, a.label);
-    label_charts(a.mesh, a.label, &a.charts);
-    std::vector<Eigen::Vector3d> refused;
-    a.position = polycube_positions(a.mesh, frame, a.label, 0.05, &a.why, &refused);
-    if(!a.position && !refused.empty()) {
-      a.turned.assign(num_faces(a.mesh), false);
-      for(auto f : turned_faces(a.mesh, a.label, refused)) a.turned[std::size_t(f)] = true;
-      for(auto& p : refused) p = frame.transpose() * p;
-      a.refused_position = std::move(refused);
-    }
-    return a;
-  };
-  Polycube_map_attempt<P> nearest = attempt(0.);
+  Polycube_map_attempt<P> nearest = polycube_map_on_labels(input, frame, normal, area, 0.);
   for(double w : {0.01, 0.02}) {
     if(nearest.position) break;
-    Polycube_map_attempt<P> smoothed = attempt(w);
+    Polycube_map_attempt<P> smoothed = polycube_map_on_labels(input, frame, normal, area, w);
     if(smoothed.position) return smoothed;
     std::ostringstream said;
     said << "; with graph-cut labels at border weight " << w << ": " << smoothed.why;
