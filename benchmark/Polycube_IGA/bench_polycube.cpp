@@ -48,13 +48,6 @@ const char* const files[] = {
   "bench:org_twisted_torus.off", "cgal/fandisk.off", "cgal/anchor_dense.off",
 };
 
-std::size_t turned(const PI::internal::Polycube_map_attempt<typename Mesh::Point>& a)
-{
-  std::size_t n = 0;
-  for(bool t : a.turned) n += t ? 1 : 0;
-  return n;
-}
-
 void run_case(const Options& opt, const std::string& file)
 {
   const bool in_tests = file.rfind("test:", 0) == 0, in_bench = file.rfind("bench:", 0) == 0;
@@ -88,8 +81,8 @@ void run_case(const Options& opt, const std::string& file)
     {"polycube", attempt.position ? 1.0 : 0.0},
     {"label_border_weight", attempt.border_weight},
     {"charts", double(attempt.charts)},
-    {"turned_nearest", double(turned(nearest))},
-    {"turned", double(turned(attempt))},
+    {"turned_nearest", double(nearest.faces_turned())},
+    {"turned", double(attempt.faces_turned())},
     {"threads", 1.0},
   };
   std::vector<std::pair<std::string, double>> stages = {{"nearest", t_nearest}, {"map", t_map}};

@@ -36,6 +36,7 @@
 #include <CGAL/Polycube_IGA/Surface_topology.h>
 #include <CGAL/Polycube_IGA/parameters.h>
 #include <CGAL/Polycube_IGA/internal/bbox_diagonal.h>
+#include <CGAL/Polycube_IGA/internal/edge_length.h>
 #include <CGAL/Polycube_IGA/internal/feature_curves.h>
 #include <CGAL/Polycube_IGA/internal/layout_assembly.h>
 #include <CGAL/Polycube_IGA/internal/level_set_measures.h>
@@ -96,12 +97,6 @@ std::vector<std::vector<typename Piece_mesh<P>::Vertex_index>> all_border_loops(
   }
   std::sort(loops.begin(), loops.end(), [](const auto& a, const auto& b) { return a.front() < b.front(); });
   return loops;
-}
-
-template <class P>
-double edge_length(const Piece_mesh<P>& m, typename Piece_mesh<P>::Vertex_index a, typename Piece_mesh<P>::Vertex_index b)
-{
-  return std::sqrt(CGAL::to_double(CGAL::squared_distance(m.point(a), m.point(b))));
 }
 
 /// Cumulative 3D arc length along a closed loop (size n+1, last = total).

@@ -17,6 +17,7 @@
 #define CGAL_POLYCUBE_IGA_INTERNAL_POLYCUBE_MAP_H
 
 #include <CGAL/Polycube_IGA/internal/bbox_diagonal.h>
+#include <CGAL/Polycube_IGA/internal/edge_length.h>
 #include <CGAL/Polycube_IGA/internal/mesh_pieces.h>
 #include <CGAL/Polycube_IGA/internal/min_cut.h>
 #include <CGAL/Polycube_IGA/internal/orthogonal_grid.h>
@@ -215,13 +216,6 @@ std::vector<int> label_charts(const Mesh& m, const std::vector<int>& label, int*
   }
   if(count) *count = n;
   return chart;
-}
-
-/// The length of the edge of halfedge `h`.
-template <class Mesh>
-double edge_length(const Mesh& m, typename Mesh::Halfedge_index h)
-{
-  return std::sqrt(CGAL::to_double(CGAL::squared_distance(m.point(source(h, m)), m.point(target(h, m)))));
 }
 
 /// Gives each chart of `label` smaller than `minimum_chart` of the surface's area to the
@@ -838,6 +832,9 @@ struct Polycube_map_attempt
   std::vector<Eigen::Vector3d> refused_position; ///< world coordinates, when `position` is empty
   std::vector<bool> turned; ///< by face, of `refused_position`
   std::string why;          ///< when `position` is empty: the nearest labels' reason, then the others'
+
+  /// The faces the refused deformation left turned over or flat (0 for a polycube).
+  std::size_t faces_turned() const { return std::size_t(std::count(turned.begin(), turned.end(), true)); }
 };
 
 /// One polycube map of `input` in `frame` (its faces' `normal` and `area` given): the nearest
