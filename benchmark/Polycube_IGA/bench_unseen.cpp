@@ -7,8 +7,9 @@
 //   - shared-data meshes no test reads (a CAD fan disk and a gear, a capped cylinder, a
 //     denser anchor, the armadillo, femurs of the population);
 //   - CAD blocks that are not boxes, made here as unions of unit cubes (an L, a T, a U, a
-//     staircase; meshes::union_of_cubes(), 6 x 6 squares per cube face): the simplest CAD
-//     parts after a box, which `build` lays out on its sharp edges;
+//     staircase, a plate with a hole, a boss and a lug whose planes cross inside it;
+//     meshes::union_of_cubes(), 6 x 6 squares per cube face): the simplest CAD parts after a
+//     box, which `build` lays out on its sharp edges;
 //   - the test meshes remeshed (among them two CAD parts with fillets and round holes, which
 //     go to their polycube maps first): PMP::isotropic_remeshing to about `target_faces` faces,
 //     with the edges whose faces meet at over 50 degrees, the border edges, and the
@@ -83,6 +84,7 @@ const Unseen_case cases[] = {
   {"population/femur/S010_Femur.ply", 0, true},
   {"block:L", 0, true},                      {"block:T", 0, true},
   {"block:U", 0, true},                      {"block:staircase", 0, true},
+  {"block:bossed_plate", 0, true},
   {"bench:cad_flange_5holes.off", 0, false}, {"bench:cad_L_bracket_2holes.off", 0, true},
   {"bench:cad_mug_torus_handle.off", 0, true}, {"bench:cad_tee_solid.off", 0, false},
   {"bench:cad_elbow_tube.off", 0, false},    {"bench:cad_box_3holes.off", 0, false},
@@ -115,6 +117,15 @@ const Block blocks[] = {
   {"T", extruded({{0, 0}, {1, 0}, {2, 0}, {3, 0}, {4, 0}, {2, 1}, {2, 2}, {2, 3}}, 2)},
   {"U", extruded({{0, 0}, {1, 0}, {2, 0}, {0, 1}, {0, 2}, {2, 1}, {2, 2}}, 1)},
   {"staircase", {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}, {0, 0, 2}, {0, 1, 2}}},
+  // A 5 by 3 plate, 2 thick, with a hole at (3, 1), a boss on top at (1, 1) and a lug on its
+  // side at (5, 1) one high: the planes of the three cross inside the plate (interior nodes).
+  {"bossed_plate", [] {
+     std::vector<std::array<int, 3>> c = extruded({{0, 0}, {1, 0}, {2, 0}, {3, 0}, {4, 0}, {0, 1}, {1, 1}, {2, 1}, {4, 1},
+                                                   {0, 2}, {1, 2}, {2, 2}, {3, 2}, {4, 2}}, 2);
+     c.push_back({1, 1, 2});
+     c.push_back({5, 1, 0});
+     return c;
+   }()},
 };
 
 /// Isotropic remeshing to about `target_faces` faces of equilateral triangles, sharp edges (dihedral

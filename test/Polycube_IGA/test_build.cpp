@@ -793,14 +793,19 @@ TEST_CASE("build lays a bone out as a chain of cuboids that is valid at the firs
   CHECK(cube.volume.distance.relative > 2. * chain.volume.distance.relative);
 }
 
-TEST_CASE("build turns CAD blocks into valid volumes on their boxes, exactly on the mesh: an L and plates of genus 2", "[build][blocks]")
+TEST_CASE("build turns CAD blocks into valid volumes on their boxes, exactly on the mesh: an L, plates of genus 2, a cube with bosses", "[build][blocks]")
 {
   // An L of unit cubes as a chain or one cube is invalid (a gmsh L 4 by 3 by 2 as a chain of
   // 9: 2.4% of the diagonal off at a box corner inside a cap). On its 3 boxes every face is
   // flat and the volume is the solid, valid at the first grid.
   // A plate whose two holes are not in a row (cells (1, 1) and (3, 2) of 5 by 4): the planes
   // of one hole's walls cross the other's inside the plate, so box edges run through it.
-  for(const std::string& text : {voxel_l_off(), voxel_plate_with(2, 0), voxel_plate_off(5, 4, {{1, 1}, {3, 2}}, {})}) {
+  // A 3 by 3 by 3 cube with a boss on its top and one on a side: the bosses' planes cross
+  // inside the cube, at 8 box corners there (interior nodes, on no slab of the boundary layer).
+  std::set<std::array<int, 3>> bosses{{1, 1, 3}, {3, 1, 1}};
+  for(int i = 0; i < 27; ++i) bosses.insert({i % 3, i / 3 % 3, i / 9});
+  for(const std::string& text :
+      {voxel_l_off(), voxel_plate_with(2, 0), voxel_plate_off(5, 4, {{1, 1}, {3, 2}}, {}), voxel_solid_off(bosses)}) {
     const Mesh m = load(write_text("block.off", text));
     const auto model = PI::build_trivariate_model(m);
     CHECK(model.layout.layout_class == PI::Layout_class::blocks);
@@ -1262,14 +1267,16 @@ TEST_CASE("build fits the faces stiffer where a boundary side turns over: ring5.
 }
 
 namespace {
-// Built on one grid of 16 and no other attempt (fast): the first volume misses a part of the
-// shape, more than `off` of the diagonal away; with up to two cubes for missing parts, each
-// cube is added to the layout, named in a warning, and the volume comes nearer than half.
+// Built by its genus on one grid of 16 and no other attempt (fast): the first volume misses
+// a part of the shape, more than `off` of the diagonal away; with up to two cubes for
+// missing parts, each cube is added to the layout, named in a warning, and the volume comes
+// nearer than half. A voxel shape is laid out by its genus, not on its boxes (exact).
 PI::Trivariate_model<Point> check_cube_for_missing_part(const Mesh& m, double off)
 {
   auto options = [](int cubes) {
     return PI::parameters::missing_part_cubes(cubes).maximum_grid_resolution(16).minimum_grid_resolution(16).minimum_spline_degree(3)
-      .grid_relaxation_sweeps(0).stretch_rounds(0).untangle_volume(false).untangle_invalid_result(false).cuts_away_retry(false);
+      .grid_relaxation_sweeps(0).stretch_rounds(0).untangle_volume(false).untangle_invalid_result(false).cuts_away_retry(false)
+      .orthogonal_blocks(false).polycube_retry(false);
   };
   const auto plain = PI::build_trivariate_model(m, options(0));
   REQUIRE(plain.volume.quality_evaluated);

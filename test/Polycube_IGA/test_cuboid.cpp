@@ -22,6 +22,7 @@
 #include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/centroid.h>
 
 #include <catch2/catch.hpp>
@@ -726,7 +727,7 @@ TEST_CASE("untangling a polycube moves a vertex off a chart's reflex corner into
   CHECK(2. * x.y() - x.x() + 1. > 0.);
 }
 
-TEST_CASE("a polycube map is refused with a reason: a surface with a boundary, labels that make no polycube, a box corner inside", "[cuboid][polycube]")
+TEST_CASE("a polycube map is refused with a reason: a surface with a boundary, labels that make no polycube", "[cuboid][polycube]")
 {
   const auto polycube = PI::parameters::polycube_map(true);
   const Mesh open = load(write_text("plate_open.off", voxel_plate_with(1, 1)));
@@ -743,15 +744,70 @@ TEST_CASE("a polycube map is refused with a reason: a surface with a boundary, l
   } catch(const PI::Internal_error& e) {
     CHECK(e.reason() == "no_polycube_map");
   }
-  // joint.off: its polycube is a box under a smaller one whose hole's planes cut the larger
-  // one, so box corners would lie inside the solid, where no node can be (a mesh vertex).
-  try {
-    PI::Cuboid_decomposition<Mesh>()(load(data("joint.off")), polycube);
-    FAIL("joint.off was laid out on a polycube map");
-  } catch(const PI::Internal_error& e) {
-    CHECK(e.reason() == "no_polycube_map");
-    CHECK(std::string(e.what()).find("a box corner would lie inside the solid") != std::string::npos);
+}
+
+namespace {
+
+/// Checks the interior nodes of `L` (box corners inside the solid bounded by `m`): each lies
+/// strictly inside it, on no face, and all its arcs are straight segments inside the solid,
+/// one along each way of each axis. Returns how many there are.
+std::size_t check_interior_nodes(const Mesh& m, const Layout& L)
+{
+  const CGAL::Side_of_triangle_mesh<Mesh, Kernel> side(m);
+  std::vector<int> valence(L.nodes.size(), 0);
+  for(const auto& a : L.arcs)
+    for(std::size_t n : a.nodes)
+      if(L.is_interior_node(n)) {
+        CHECK(a.inside);
+        CHECK(a.vertices.size() == 2);
+        ++valence[n];
+      }
+  std::size_t count = 0;
+  for(std::size_t n = 0; n < L.nodes.size(); ++n) {
+    if(!L.is_interior_node(n)) continue;
+    ++count;
+    INFO("interior node " << n << " at " << L.mesh.point(L.nodes[n]));
+    CHECK(side(L.mesh.point(L.nodes[n])) == CGAL::ON_BOUNDED_SIDE);
+    CHECK(valence[n] == 6);
   }
+  return count;
+}
+
+} // namespace
+
+TEST_CASE("a CAD block whose faces' planes cross inside it gets interior nodes there: a cube with two bosses", "[cuboid][blocks]")
+{
+  // A 3 by 3 by 3 cube with a unit boss on its top and one on a side: the bosses' walls
+  // (x, y = 1, 2 and y, z = 1, 2) cross inside the cube, so the 8 box corners (1 or 2, 1 or
+  // 2, 1 or 2) lie in the solid. They are nodes on no face, with six straight arcs each.
+  std::set<std::array<int, 3>> cells{{1, 1, 3}, {3, 1, 1}};
+  for(int i = 0; i < 27; ++i) cells.insert({i % 3, i / 3 % 3, i / 9});
+  const Mesh m = load(write_text("bosses.off", voxel_solid_off(cells)));
+  const Layout L = decompose(m);
+  CHECK(L.layout_class == PI::Layout_class::blocks);
+  check_layout(m, L);
+  CHECK(L.cuboids.size() == 29);
+  CHECK(sharp_edges_on_arcs(L));
+  CHECK(check_interior_nodes(m, L) == 8);
+  for(std::size_t n = 0; n < L.nodes.size(); ++n)
+    if(L.is_interior_node(n)) {
+      const Point& p = L.mesh.point(L.nodes[n]);
+      for(double x : {p.x(), p.y(), p.z()}) CHECK((x == 1. || x == 2.));
+    }
+}
+
+TEST_CASE("a polycube whose planes cross inside the solid gets interior nodes there: joint.off's boxes", "[cuboid][polycube]")
+{
+  // joint.off's polycube is a box with a through hole under a smaller box with its own hole,
+  // whose planes cut the larger box: 10 box corners lie inside the polycube. Each is carried
+  // back between the surface nodes that end its three grid lines, and lies inside the solid.
+  const Mesh m = load(data("joint.off"));
+  const Layout L = PI::Cuboid_decomposition<Mesh>()(m, PI::parameters::polycube_map(true));
+  CHECK(L.layout_class == PI::Layout_class::polycube);
+  CHECK(L.genus == 2);
+  check_layout(m, L);
+  CHECK(L.cuboids.size() == 79);
+  CHECK(check_interior_nodes(m, L) == 10);
 }
 
 TEST_CASE("a polycube map refused on the nearest labels is made on graph-cut labels: 3holes.obj's boxes", "[cuboid][polycube]")

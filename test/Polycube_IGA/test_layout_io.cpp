@@ -411,6 +411,8 @@ TEST_CASE("layout json lists every element of the layout", "[layout_io]")
         const Json& node = j["nodes"][n];
         CHECK(node["vertex"].integer() == long(std::size_t(L.nodes[n])));
         CHECK(node["input_vertex"].integer() == -1); // the fixture has no "v:input_index"
+        CHECK(node["interior"].type == Json::BOOL);
+        CHECK(!node["interior"].boolean); // every node of a sphere's or a tube's cube is on it
         const auto c = coordinates(L.mesh.point(L.nodes[n]));
         for(std::size_t d = 0; d < 3; ++d) CHECK(node["point"][d].number == c[d]);
       }

@@ -810,6 +810,7 @@ private:
         if(a[0] >= 0 && a[1] >= 0 && a[2] >= 0 && !vertex_at.emplace(a, std::size_t(v)).second)
           layout_failure("two vertices at one grid point");
       }
+      add_interior_corners(m, G, vertex_at, at);
       Layout_builder bld;
       auto node_at = [&](const std::array<int, 3>& a) {
         auto it = vertex_at.find(a);
@@ -823,7 +824,7 @@ private:
         ++b[k];
         node_at(a), node_at(b);
         // A box edge inside the solid (its four boxes all there) is the straight segment
-        // between its ends, which orthogonal_grid() has checked are on the surface.
+        // between its ends, on the surface or interior nodes.
         if(G.edge_inside(a, k)) return std::vector<std::size_t>{vertex_at.at(a), vertex_at.at(b)};
         const double end = G.planes[k][std::size_t(b[k])];
         std::vector<std::size_t> path{vertex_at.at(a)};
@@ -882,6 +883,16 @@ private:
         for(V v : vertices(m)) m.point(v) = original.first[v];
         m.remove_property_map(original.first);
       }
+      // An interior node placed outside the solid would turn its boxes over.
+      CGAL::Side_of_triangle_mesh<Mesh, typename CGAL::Kernel_traits<Point>::Kernel> side(m);
+      for(const auto& [a, v] : vertex_at)
+        if(m.is_isolated(V(std::uint32_t(v))) && side(m.point(V(std::uint32_t(v)))) != CGAL::ON_BOUNDED_SIDE) {
+          const Point& x = m.point(V(std::uint32_t(v)));
+          if(why)
+            *why = "a box corner inside the polycube falls outside the solid, at (" + std::to_string(CGAL::to_double(x.x())) + ", " +
+                   std::to_string(CGAL::to_double(x.y())) + ", " + std::to_string(CGAL::to_double(x.z())) + ")";
+          return std::nullopt;
+        }
       Layout L = finish_layout(std::move(m), bld, layout_class, genus, 0, 0);
       const Layout_validation v = L.validate();
       if(!v.is_valid()) {
@@ -893,6 +904,51 @@ private:
       if(why) *why = e.what();
       return std::nullopt;
     }
+  }
+
+  /// The box corners of `G` inside the solid (its eight boxes round it all there), added to
+  /// `m` as vertices on no face (interior nodes) and to `vertex_at` and `at`. On a polycube
+  /// map (`m` carries "v:original_point") the corner's place in the surface's space is the
+  /// mean over the three axes of its place between the two surface corners that end its grid
+  /// line there: exact for a box, and the boxes of a polycube map are near affine images.
+  static void add_interior_corners(Mesh& m, const internal::Orthogonal_grid& G, std::map<std::array<int, 3>, std::size_t>& vertex_at,
+                                   std::vector<std::array<int, 3>>& at)
+  {
+    auto original = m.template property_map<V, Point>("v:original_point");
+    const std::array<int, 3> n = G.cells();
+    auto grid_point = [&](const std::array<int, 3>& a) {
+      Eigen::Vector3d u;
+      for(std::size_t k = 0; k < 3; ++k) u[Eigen::Index(k)] = G.planes[k][std::size_t(a[k])];
+      return u;
+    };
+    auto surface_point = [&](const std::array<int, 3>& a) {
+      const auto it = vertex_at.find(a);
+      if(it == vertex_at.end()) internal::layout_failure("a box corner is not a mesh vertex");
+      const Point& x = original.first[V(std::uint32_t(it->second))];
+      return Eigen::Vector3d(CGAL::to_double(x.x()), CGAL::to_double(x.y()), CGAL::to_double(x.z()));
+    };
+    for(int l = 0; l <= n[2]; ++l)
+      for(int j = 0; j <= n[1]; ++j)
+        for(int i = 0; i <= n[0]; ++i) {
+          const std::array<int, 3> a{i, j, l};
+          if(!G.point_inside(a)) continue;
+          const Eigen::Vector3d u = grid_point(a), x = G.frame.transpose() * u;
+          const V v = m.add_vertex(Point(x.x(), x.y(), x.z()));
+          if(original.second) {
+            Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+            for(std::size_t k = 0; k < 3; ++k) {
+              std::array<int, 3> lo = a, hi = a;
+              while(G.point_inside(lo)) --lo[k];
+              while(G.point_inside(hi)) ++hi[k];
+              const double t = (u[Eigen::Index(k)] - G.planes[k][std::size_t(lo[k])]) / (G.planes[k][std::size_t(hi[k])] - G.planes[k][std::size_t(lo[k])]);
+              sum += (1. - t) * surface_point(lo) + t * surface_point(hi);
+            }
+            sum /= 3.;
+            original.first[v] = Point(sum.x(), sum.y(), sum.z());
+          }
+          vertex_at.emplace(a, std::size_t(v));
+          at.push_back(a);
+        }
   }
 
   /// A closed surface of genus `genus` laid out on the boxes of a polycube map of it

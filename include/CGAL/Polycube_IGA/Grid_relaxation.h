@@ -248,7 +248,9 @@ Grid_relaxation_result relax_surface_grids(const Polycube_layout<Point_3>& L, Pa
   for(std::size_t a = 0; a < L.arcs.size(); ++a) {
     auto& s = G.arc_samples[a];
     if(L.arcs[a].inside) { // a straight segment between its (relaxed) nodes, sampled as at first
-      const std::vector<Eigen::Vector3d> ends{x[L.arcs[a].nodes[0]], x[L.arcs[a].nodes[1]]};
+      // An interior node is on no surface grid, so it stays.
+      const std::size_t n0 = L.arcs[a].nodes[0], n1 = L.arcs[a].nodes[1];
+      const std::vector<Eigen::Vector3d> ends{used[n0] ? x[n0] : s.front(), used[n1] ? x[n1] : s.back()};
       s = internal::sample_polyline(ends, internal::cumulative_lengths(ends), N);
       continue;
     }

@@ -494,8 +494,15 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
   for(std::size_t n = 0; n < nn; ++n)
     if(surface_corners[n] > 0 && node_normal[n].norm() < 0.25 * surface_corners[n] && depth[n] < infinity)
       node_normal[n] = probe.closest_face_normal(outer[n]);
+  // An interior node (a box corner inside the solid) is on no slab: its inner node is itself.
+  std::vector<bool> interior(nn, false);
+  for(std::size_t n = 0; n < nn; ++n) interior[n] = layout.is_interior_node(n);
   std::vector<Eigen::Vector3d> inner(nn);
   for(std::size_t n = 0; n < nn; ++n) {
+    if(interior[n]) {
+      depth[n] = 0.;
+      continue;
+    }
     const double l = node_normal[n].norm();
     if(!(l > 0.) || !(depth[n] < infinity))
       throw Invalid_input_error("invalid_layout", "node " + std::to_string(n) + " has no surface normal to pad along");
@@ -510,14 +517,15 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
   // there the solid is as thin as at the nodes it shares an arc with.
   if(o.maximum_thickness_fraction > 0.) {
     std::vector<double> under(nn);
-    for(std::size_t n = 0; n < nn; ++n) under[n] = probe.thickness(outer[n], node_normal[n]);
+    for(std::size_t n = 0; n < nn; ++n) under[n] = interior[n] ? infinity : probe.thickness(outer[n], node_normal[n]);
     std::vector<double> seen = under;
     for(const auto& arc : layout.arcs)
       for(std::size_t e = 0; e < 2; ++e) {
         const std::size_t n = arc.nodes[e], other = arc.nodes[1 - e];
-        if(!(under[n] < infinity)) seen[n] = std::min(seen[n], under[other]);
+        if(!interior[n] && !(under[n] < infinity)) seen[n] = std::min(seen[n], under[other]);
       }
-    for(std::size_t n = 0; n < nn; ++n) depth[n] = std::min(depth[n], o.maximum_thickness_fraction * seen[n]);
+    for(std::size_t n = 0; n < nn; ++n)
+      if(!interior[n]) depth[n] = std::min(depth[n], o.maximum_thickness_fraction * seen[n]);
   }
   // A node capped by the thickness would tilt the inner arcs and walls around it: the depth
   // may change along an arc by at most maximum_depth_slope times its length (depths only
@@ -527,6 +535,7 @@ Padded_layout<Point_3> pad_layout(const Polycube_layout<Point_3>& layout, const 
       changed = false;
       for(std::size_t a = 0; a < na; ++a) {
         const std::size_t n0 = layout.arcs[a].nodes[0], n1 = layout.arcs[a].nodes[1];
+        if(interior[n0] || interior[n1]) continue; // no slab along this arc
         const double slack = o.maximum_depth_slope * length[a];
         for(const auto& e : {std::make_pair(n0, n1), std::make_pair(n1, n0)})
           if(depth[e.first] > depth[e.second] + slack) {

@@ -8,8 +8,9 @@
 // between cuboids) that only have their four arcs, and cuboids list their 8 nodes and 6
 // patches. Every arc lies on the surface, except the box edges of a CAD block (or a polycube)
 // that run through the solid between two surface nodes: those are straight segments
-// (Arc::inside) bounding interfaces only. validate() checks the properties the later stages
-// rely on.
+// (Arc::inside) bounding interfaces only, and the box corners inside the solid where such
+// edges cross: interior nodes, vertices of the mesh on no face (is_interior_node()), all of
+// whose arcs run inside. validate() checks the properties the later stages rely on.
 
 #ifndef CGAL_POLYCUBE_IGA_POLYCUBE_LAYOUT_H
 #define CGAL_POLYCUBE_IGA_POLYCUBE_LAYOUT_H
@@ -131,6 +132,10 @@ struct Polycube_layout
   std::vector<Patch> patches;
   std::vector<Cuboid> cuboids;
 
+  /// Whether node n lies inside the solid, not on the surface: its vertex is on no face
+  /// (a box corner of a polycube where the planes of features far apart cross).
+  bool is_interior_node(std::size_t n) const { return mesh.is_isolated(nodes[n]); }
+
   /// The node indices of side s (1..6) of a cuboid, ordered by the two remaining local
   /// directions increasing: (0,0), (1,0), (0,1), (1,1).
   static std::array<std::size_t, 4> side_nodes(const Cuboid& c, int s)
@@ -212,6 +217,8 @@ Layout_validation Polycube_layout<Point_3>::validate() const
       problem(name + " does not start and end at its nodes");
     ++valence[arc.nodes[0]];
     ++valence[arc.nodes[1]];
+    if(!arc.inside && (is_interior_node(arc.nodes[0]) || is_interior_node(arc.nodes[1])))
+      problem(name + " ends at an interior node but runs on the surface");
     if(arc.inside) {
       if(arc.vertices.size() != 2) problem(name + " runs inside the solid but is not one segment");
       continue;
@@ -368,7 +375,9 @@ Layout_validation Polycube_layout<Point_3>::validate() const
 
   // The surface's own graph: the arcs inside the solid are edges of the cuboid complex only.
   const long inside_arcs = std::count_if(arcs.begin(), arcs.end(), [](const Arc& a) { return a.inside; });
-  r.euler_surface = int(nodes.size()) - int(arcs.size() - std::size_t(inside_arcs)) + int(surface_patches);
+  std::size_t interior_nodes = 0;
+  for(std::size_t n = 0; n < nodes.size(); ++n) interior_nodes += is_interior_node(n) ? 1 : 0;
+  r.euler_surface = int(nodes.size() - interior_nodes) - int(arcs.size() - std::size_t(inside_arcs)) + int(surface_patches);
   r.euler_solid = int(nodes.size()) - int(arcs.size()) + int(patches.size()) - int(cuboids.size());
   const int chi_surface = 2 - 2 * genus - int(boundary_loops);
   if(r.euler_surface != chi_surface)

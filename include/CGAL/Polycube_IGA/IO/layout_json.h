@@ -176,7 +176,8 @@ inline void write_indented_json(std::ostream& os, const std::string& s)
 /// Writes the layout as one JSON object (keys in this order): `class` (layout_class_name),
 /// `genus`, `boundary_loops`, `pants`, `turned_outwards` (the input's faces pointed inwards);
 /// `nodes` [{`vertex`, `input_vertex` (from the mesh's
-/// "v:input_index" property, -1 without it or for a refinement vertex), `point` [x,y,z]}];
+/// "v:input_index" property, -1 without it or for a refinement vertex), `interior` (a box
+/// corner inside the solid, Polycube_layout::is_interior_node()), `point` [x,y,z]}];
 /// `arcs` [{`nodes` [a,b], `vertices` [...], `inside`, `length`}]; `patches` [{`kind` ("surface",
 /// "cap" or "interface"), `corners` [4], `arcs` [4], `faces` (count), `area` (of the faces,
 /// 0 for cap and interface patches)}]; `cuboids` [{`nodes` [8], `patches` [6], `pants`}];
@@ -208,7 +209,7 @@ void write_layout_json(std::ostream& os, const Polycube_layout<P>& L, bool prett
     long long input = -1;
     if(input_index.second && input_index.first[v] != std::size_t(-1)) input = (long long)(input_index.first[v]);
     const auto p = Polycube_IGA::internal::layout_point_array(L.mesh.point(v));
-    w.begin_object().member("vertex", Ull(std::size_t(v))).member("input_vertex", input);
+    w.begin_object().member("vertex", Ull(std::size_t(v))).member("input_vertex", input).member("interior", L.mesh.is_isolated(v));
     w.key("point").begin_array().value(p[0]).value(p[1]).value(p[2]).end_array();
     w.end_object();
   }

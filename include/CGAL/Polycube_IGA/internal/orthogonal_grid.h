@@ -4,9 +4,10 @@
 // A CAD block whose faces are all planar and perpendicular to three orthogonal axes (an L,
 // a T, a U, a bracket: an orthogonal polyhedron) splits into boxes along the planes of its
 // faces: the cells of that grid inside the solid. The boxes meet face to face, so they are
-// the cuboids of a polycube layout, and every sharp edge lies on a box edge. The layout
-// needs every node and arc on the surface: a grid edge with all four cells around it inside
-// the solid (a plate under a boss) would run through it, and such blocks are refused.
+// the cuboids of a polycube layout, and every sharp edge lies on a box edge. Box edges and
+// corners may lie inside the solid (a staircase's inner corner line; where the planes of a
+// boss and of a hole elsewhere cross): the layout takes them as straight arcs and interior
+// nodes (Polycube_layout::is_interior_node()).
 // Read by the cuboid decomposition (Cuboid_decomposition::orthogonal_blocks()).
 
 #ifndef CGAL_POLYCUBE_IGA_INTERNAL_ORTHOGONAL_GRID_H
@@ -104,9 +105,9 @@ std::pair<std::vector<Eigen::Vector3d>, std::vector<double>> face_normals_and_ar
 }
 
 /// The grid of `m` when it is an orthogonal polyhedron (every face's normal within
-/// `angle_degrees` of an axis, every face on one of its axis's planes) whose box corners all
-/// lie on the surface, with at most `maximum_cells` boxes; empty otherwise, and then, for an
-/// orthogonal polyhedron, `why` says what is wrong with its boxes.
+/// `angle_degrees` of an axis, every face on one of its axis's planes) with at most
+/// `maximum_cells` boxes; empty otherwise, and then, for an orthogonal polyhedron, `why`
+/// says what is wrong with its boxes.
 template <class Mesh>
 std::optional<Orthogonal_grid> orthogonal_grid(const Mesh& m, double angle_degrees = 2., std::size_t maximum_cells = 256,
                                                std::string* why = nullptr)
@@ -178,18 +179,6 @@ std::optional<Orthogonal_grid> orthogonal_grid(const Mesh& m, double angle_degre
       }
   if(count == 0) return refuse("no grid cell is inside it");
   if(count > maximum_cells) return refuse(std::to_string(count) + " boxes, over " + std::to_string(maximum_cells));
-  // Every box corner on the surface: not all eight cells around it inside. A box edge may
-  // run inside the solid between two corners on the surface (a staircase's inner corner
-  // line); a corner inside would need a node that no mesh vertex can be.
-  for(int l = 0; l <= n[2]; ++l)
-    for(int j = 0; j <= n[1]; ++j)
-      for(int i = 0; i <= n[0]; ++i)
-        if(g.point_inside({i, j, l})) {
-          const Eigen::Vector3d x =
-            g.frame.transpose() * Eigen::Vector3d(g.planes[0][std::size_t(i)], g.planes[1][std::size_t(j)], g.planes[2][std::size_t(l)]);
-          return refuse("a box corner would lie inside the solid, at (" + std::to_string(x.x()) + ", " + std::to_string(x.y()) + ", " +
-                        std::to_string(x.z()) + ")");
-        }
   return g;
 }
 
