@@ -1062,7 +1062,7 @@ TEST_CASE("build CLI lays a closed surface out on a polycube map with --polycube
   CHECK(!exists(none));
 }
 
-TEST_CASE("polycube CLI shows the map: the filleted T's 4 boxes, the faces anchor.off's deformation turns over", "[build][cli][polycube]")
+TEST_CASE("polycube CLI shows the map: the filleted T's 4 boxes, joint.off's corners inside, the faces anchor.off's deformation turns over", "[build][cli][polycube]")
 {
   auto json_integer = [](const std::string& text, const std::string& key) {
     const std::size_t at = text.find("\"" + key + "\":");
@@ -1074,7 +1074,12 @@ TEST_CASE("polycube CLI shows the map: the filleted T's 4 boxes, the faces ancho
   CHECK(t.out.find("\"polycube\":true") != std::string::npos);
   CHECK(json_integer(t.out, "faces_turned") == 0);
   CHECK(json_integer(t.out, "boxes") == 4);
+  CHECK(json_integer(t.out, "interior_nodes") == 0);
   CHECK(t.out.find("\"refusal\":\"\"") != std::string::npos);
+  // joint.off's polycube has box corners inside the solid, which the layout holds.
+  const Cli_result j = run_cli("polycube '" + data("joint.off") + "'");
+  CHECK(j.exit_code == 0);
+  CHECK(j.out.find("a polycube: 79 boxes, 10 of their corners inside the solid") != std::string::npos);
   {
     const std::string xml = file_text(vtu);
     CHECK(xml_tags_balance(xml));

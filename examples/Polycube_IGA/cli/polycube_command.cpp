@@ -71,6 +71,8 @@ int run_polycube(const Arguments& args)
       refusal = e.what();
     }
   }
+  std::size_t interior_nodes = 0;
+  for(std::size_t n = 0; layout && n < layout->nodes.size(); ++n) interior_nodes += layout->is_interior_node(n) ? 1 : 0;
   if(a.has("--vtk")) write_map_vtu(a.get("--vtk"), map, PI::internal::vtu_points(map.mesh));
   if(a.has("--deformed")) {
     const std::vector<Eigen::Vector3d>& deformed = map.position ? *map.position : map.refused_position;
@@ -94,6 +96,7 @@ int run_polycube(const Arguments& args)
       .member("polycube", bool(map.position))
       .member("faces_turned", map.faces_turned())
       .member("boxes", layout ? layout->cuboids.size() : std::size_t(0))
+      .member("interior_nodes", interior_nodes)
       .member("refusal", refusal)
       .end_object();
     std::cout << "\n";
@@ -110,7 +113,9 @@ int run_polycube(const Arguments& args)
               << map.charts << " charts, ";
     if(map.border_weight > 0.) std::cout << "graph-cut labels at border weight " << map.border_weight << "\n";
     else std::cout << "the nearest labels\n";
-    if(layout) std::cout << "a polycube: " << layout->cuboids.size() << " boxes, " << layout->patches.size() << " patches\n";
+    if(layout)
+      std::cout << "a polycube: " << layout->cuboids.size() << " boxes, " << interior_nodes << " of their corners inside the solid, "
+                << layout->patches.size() << " patches\n";
     else if(map.position) std::cout << "a polycube, but " << refusal << "\n";
     else std::cout << "not a polycube: " << map.why << "\n";
   }
@@ -126,9 +131,10 @@ Register_command polycube_command("polycube", {
   "  the surface deformed until each chart is planar, the polycube split into boxes; when\n"
   "  those labels make no polycube, graph-cut labels at border weights 0.01 and 0.02.\n"
   "  --json        {frame: [3 axes], alignment, faces, charts, label_border_weight (0: the\n"
-  "                nearest labels), polycube, faces_turned, boxes, refusal}: polycube says\n"
-  "                whether the deformation is one; refusal is empty when the boxes make a\n"
-  "                layout; a refused map shows the nearest labels\n"
+  "                nearest labels), polycube, faces_turned, boxes, interior_nodes (box\n"
+  "                corners inside the solid), refusal}: polycube says whether the\n"
+  "                deformation is one; refusal is empty when the boxes make a layout; a\n"
+  "                refused map shows the nearest labels\n"
   "  --vtk OUT.vtu the surface (edges between chart borders split) with cell data label\n"
   "                (0 to 5: axis k along 2k, against 2k + 1), chart, and turned (1: a face\n"
   "                the deformation left turned over or flat)\n"
