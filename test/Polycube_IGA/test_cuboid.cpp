@@ -794,6 +794,16 @@ TEST_CASE("a CAD block whose faces' planes cross inside it gets interior nodes t
       const Point& p = L.mesh.point(L.nodes[n]);
       for(double x : {p.x(), p.y(), p.z()}) CHECK((x == 1. || x == 2.));
     }
+  // validate() names an arc at an interior node that claims to run on the surface.
+  Layout broken = L;
+  const auto at_interior = std::find_if(broken.arcs.begin(), broken.arcs.end(),
+                                        [&](const Layout::Arc& a) { return broken.is_interior_node(a.nodes[0]) || broken.is_interior_node(a.nodes[1]); });
+  REQUIRE(at_interior != broken.arcs.end());
+  at_interior->inside = false;
+  const PI::Layout_validation v = broken.validate();
+  CHECK(!v.is_valid());
+  CHECK(std::any_of(v.problems.begin(), v.problems.end(),
+                    [](const std::string& p) { return p.find("ends at an interior node but runs on the surface") != std::string::npos; }));
 }
 
 TEST_CASE("a polycube whose planes cross inside the solid gets interior nodes there: joint.off's boxes", "[cuboid][polycube]")
