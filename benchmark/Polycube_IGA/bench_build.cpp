@@ -256,9 +256,7 @@ void print_table(const std::vector<Row>& rows)
 void run_suite(const Options& opt)
 {
   meshes::One_core core;
-  std::printf("# suite build: best of %d (by total), %s; baseline = CHOLMOD LLT factor + solve of "
-              "cotangent Laplacian + 1e-8 M\n",
-              std::max(1, opt.repetitions), core.pinned() ? "pinned to one core" : "not pinned (one thread)");
+  meshes::print_timed_suite_header("build", opt, core, " (by total)");
   std::vector<Row> rows;
   for(const Case& c : cases)
     if(c.quick || !opt.quick) rows.push_back(run_case(opt, c));

@@ -24,6 +24,7 @@
 #include <map>
 #include <set>
 #include <vector>
+#include <cstdio>
 #include <ctime>
 #include <filesystem>
 #include <string>
@@ -66,6 +67,8 @@ public:
   One_core(const One_core&) = delete;
   One_core& operator=(const One_core&) = delete;
   bool pinned() const { return pinned_; }
+  /// How the suite's header says it ran.
+  const char* description() const { return pinned_ ? "pinned to one core" : "not pinned (one thread)"; }
 
 private:
   bool pinned_ = false;
@@ -73,6 +76,14 @@ private:
   cpu_set_t saved_;
 #endif
 };
+
+/// The header line of a suite timed as the best of its repetitions against the same-run
+/// CHOLMOD baseline; `best_by` qualifies "best" (" (by total)").
+inline void print_timed_suite_header(const char* suite, const Options& opt, const One_core& core, const char* best_by = "")
+{
+  std::printf("# suite %s: best of %d%s, %s; baseline = CHOLMOD LLT factor + solve of cotangent Laplacian + 1e-8 M\n", suite,
+              std::max(1, opt.repetitions), best_by, core.description());
+}
 
 /// One benchmark input: a shared-data mesh, subdivided `subdivisions` times.
 struct Case

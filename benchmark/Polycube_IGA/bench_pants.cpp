@@ -144,9 +144,7 @@ void run_case(const Options& opt, const Case& c)
 void run_suite(const Options& opt)
 {
   meshes::One_core core;
-  std::printf("# suite pants: best of %d, %s; baseline = CHOLMOD LLT factor + solve of "
-              "cotangent Laplacian + 1e-8 M\n",
-              std::max(1, opt.repetitions), core.pinned() ? "pinned to one core" : "not pinned (one thread)");
+  meshes::print_timed_suite_header("pants", opt, core);
   for(const Case& c : cases)
     if(c.quick || !opt.quick) run_case(opt, c);
 }

@@ -94,9 +94,7 @@ void run_case(const Options& opt, const std::string& file)
 void run_suite(const Options& opt)
 {
   meshes::One_core core;
-  std::printf("# suite polycube: best of %d, %s; baseline = CHOLMOD LLT factor + solve of "
-              "cotangent Laplacian + 1e-8 M\n",
-              std::max(1, opt.repetitions), core.pinned() ? "pinned to one core" : "not pinned (one thread)");
+  meshes::print_timed_suite_header("polycube", opt, core);
   for(const char* file : files) run_case(opt, file);
 }
 

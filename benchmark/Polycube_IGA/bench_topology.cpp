@@ -146,9 +146,7 @@ void run_case(const Options& opt, const Case& c, const std::filesystem::path& sc
 void run_suite(const Options& opt)
 {
   One_core core;
-  std::printf("# suite topology: best of %d, %s; baseline = CHOLMOD LLT factor + solve of "
-              "cotangent Laplacian + 1e-8 M\n",
-              std::max(1, opt.repetitions), core.pinned() ? "pinned to one core" : "not pinned (one thread)");
+  meshes::print_timed_suite_header("topology", opt, core);
   std::error_code ec;
   const std::filesystem::path scratch =
     std::filesystem::temp_directory_path() / ("polycube_iga_bench_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));

@@ -239,7 +239,7 @@ void run_suite(const Options& opt)
 {
   meshes::One_core core;
   std::printf("# suite unseen: defaults of polycube_iga build, one run each, %s\n",
-              core.pinned() ? "pinned to one core" : "not pinned (one thread)");
+              core.description());
   std::vector<Outcome> rows;
   for(const Unseen_case& c : cases)
     if(c.quick || !opt.quick) rows.push_back(run_case(opt, c));
