@@ -1062,7 +1062,7 @@ TEST_CASE("build CLI lays a closed surface out on a polycube map with --polycube
   CHECK(!exists(none));
 }
 
-TEST_CASE("polycube CLI shows the map: the filleted T's 4 boxes, joint.off's corners inside, the faces anchor.off's deformation turns over", "[build][cli][polycube]")
+TEST_CASE("polycube CLI shows the map: the filleted T's 4 boxes, joint.off's corners inside, anchor.off's tied faces, the faces eight.off's deformation turns over", "[build][cli][polycube]")
 {
   auto json_integer = [](const std::string& text, const std::string& key) {
     const std::size_t at = text.find("\"" + key + "\":");
@@ -1093,16 +1093,24 @@ TEST_CASE("polycube CLI shows the map: the filleted T's 4 boxes, joint.off's cor
     CHECK(integers(d, "label") == label);
     CHECK(attribute(d, "Piece", "NumberOfPoints") == attribute(xml, "Piece", "NumberOfPoints"));
   }
-  // anchor.off's slanted lug: labels no deformation flattens. The files are written all the
-  // same, and the turned faces in them are those counted.
-  const std::string avtu = temp_path("anchor_map.vtu");
-  const Cli_result r = run_cli("polycube '" + data("anchor.off") + "' --json --vtk '" + avtu + "'");
+  // anchor.off's slanted boss: no nearest or graph-cut labels make a polycube; its tied
+  // faces decided on a remeshed copy do.
+  const Cli_result anchor = run_cli("polycube '" + data("anchor.off") + "'");
+  CHECK(anchor.exit_code == 0);
+  CHECK(anchor.out.find("tied faces decided, on a copy remeshed to edges of") != std::string::npos);
+  CHECK(anchor.out.find("a polycube: 95 boxes, 8 of their corners inside the solid") != std::string::npos);
+  // eight.off (organic, genus 2): labels no deformation flattens. The files are written all
+  // the same, and the turned faces in them are those counted.
+  const std::string avtu = temp_path("eight_map.vtu");
+  const Cli_result r = run_cli("polycube '" + data("eight.off") + "' --json --vtk '" + avtu + "'");
   CHECK(r.exit_code == 1);
   CHECK(r.err.find("no_polycube_map: the surface deformed to its labels is not a polycube") != std::string::npos);
   CHECK(r.out.find("\"polycube\":false") != std::string::npos);
-  // Graph-cut labels were tried too; what is shown is the nearest labels' map.
+  // Graph-cut and tied labels were tried too; what is shown is the nearest labels' map.
   CHECK(r.err.find("with graph-cut labels at border weight 0.02") != std::string::npos);
+  CHECK(r.err.find("with tied faces decided on a copy remeshed to 3% of the diagonal, normals smoothed") != std::string::npos);
   CHECK(r.out.find("\"label_border_weight\":0,") != std::string::npos);
+  CHECK(r.out.find("\"remeshed_edge\":0,") != std::string::npos);
   const long turned = json_integer(r.out, "faces_turned");
   CHECK(turned > 0);
   const std::vector<long> flags = integers(file_text(avtu), "turned");

@@ -405,6 +405,8 @@ TEST_CASE("layout json lists every element of the layout", "[layout_io]")
       CHECK(j["genus"].integer() == 0);
       CHECK(j["boundary_loops"].integer() == (open ? 2 : 0));
       CHECK(j["pants"].integer() == 0);
+      CHECK(j["remeshed"].type == Json::BOOL);
+      CHECK(!j["remeshed"].boolean); // the fixture's own mesh
 
       REQUIRE(j["nodes"].size() == L.nodes.size());
       for(std::size_t n = 0; n < L.nodes.size(); ++n) {

@@ -93,6 +93,8 @@ int run_polycube(const Arguments& args)
       .member("faces", num_faces(map.mesh))
       .member("charts", map.charts)
       .member("label_border_weight", map.border_weight)
+      .member("remeshed_edge", map.remeshed_edge)
+      .member("normal_smoothing", map.normal_smoothing)
       .member("polycube", bool(map.position))
       .member("faces_turned", map.faces_turned())
       .member("boxes", layout ? layout->cuboids.size() : std::size_t(0))
@@ -112,6 +114,9 @@ int run_polycube(const Arguments& args)
     std::cout << "; alignment " << map.alignment << "\n" << num_faces(map.mesh) << " faces (edges between chart borders split), "
               << map.charts << " charts, ";
     if(map.border_weight > 0.) std::cout << "graph-cut labels at border weight " << map.border_weight << "\n";
+    else if(map.remeshed_edge > 0.)
+      std::cout << "tied faces decided, on a copy remeshed to edges of " << 100. * map.remeshed_edge << "% of the diagonal"
+                << (map.normal_smoothing ? ", normals smoothed" : "") << "\n";
     else std::cout << "the nearest labels\n";
     if(layout)
       std::cout << "a polycube: " << layout->cuboids.size() << " boxes, " << interior_nodes << " of their corners inside the solid, "
@@ -129,12 +134,16 @@ Register_command polycube_command("polycube", {
   "  The map the build tries (--polycube, its first attempt for CAD parts, its retry):\n"
   "  faces labelled with the nearest of the six directions of a frame, small charts merged,\n"
   "  the surface deformed until each chart is planar, the polycube split into boxes; when\n"
-  "  those labels make no polycube, graph-cut labels at border weights 0.01 and 0.02.\n"
+  "  those labels make no polycube, graph-cut labels at border weights 0.01 and 0.02, then\n"
+  "  faces halfway between two directions (45-degree features) decided by the creases round\n"
+  "  them, on copies remeshed to edges of 2 to 3% of the diagonal.\n"
   "  --json        {frame: [3 axes], alignment, faces, charts, label_border_weight (0: the\n"
-  "                nearest labels), polycube, faces_turned, boxes, interior_nodes (box\n"
-  "                corners inside the solid), refusal}: polycube says whether the\n"
-  "                deformation is one; refusal is empty when the boxes make a layout; a\n"
-  "                refused map shows the nearest labels\n"
+  "                nearest labels), remeshed_edge (0: the input's mesh; else the tied\n"
+  "                faces' labels on a copy remeshed to edges of this fraction of the\n"
+  "                diagonal), normal_smoothing, polycube, faces_turned, boxes,\n"
+  "                interior_nodes (box corners inside the solid), refusal}: polycube\n"
+  "                says whether the deformation is one; refusal is empty when the boxes\n"
+  "                make a layout; a refused map shows the nearest labels\n"
   "  --vtk OUT.vtu the surface (edges between chart borders split) with cell data label\n"
   "                (0 to 5: axis k along 2k, against 2k + 1), chart, and turned (1: a face\n"
   "                the deformation left turned over or flat)\n"

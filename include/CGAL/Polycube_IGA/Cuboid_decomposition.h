@@ -575,9 +575,15 @@ private:
     auto given = tm.template property_map<typename boost::graph_traits<TriangleMesh>::vertex_descriptor, std::size_t>(
       input_vertex_index_property());
     auto out = L.mesh.template add_property_map<V, std::size_t>(input_vertex_index_property(), std::size_t(-1)).first;
-    const std::size_t n = num_vertices(tm);
+    const std::size_t n = L.remeshed ? 0 : num_vertices(tm);
     for(auto v : vertices(L.mesh))
-      if(std::size_t(v) < n) out[v] = given.second ? given.first[typename boost::graph_traits<TriangleMesh>::vertex_descriptor(std::uint32_t(std::size_t(v)))] : std::size_t(v);
+      out[v] = std::size_t(v) >= n ? std::size_t(-1)
+             : given.second ? given.first[typename boost::graph_traits<TriangleMesh>::vertex_descriptor(std::uint32_t(std::size_t(v)))]
+                            : std::size_t(v);
+    // A remeshed surface's faces are none of the input's either (the copy carried the map).
+    if(L.remeshed)
+      if(auto faces_in = L.mesh.template property_map<F, std::size_t>(input_face_index_property()); faces_in.second)
+        for(auto f : faces(L.mesh)) faces_in.first[f] = std::size_t(-1);
   }
 
   using Embedding = internal::Piece_graph_embedding<Point>;
@@ -984,6 +990,7 @@ private:
     std::string boxes;
     std::optional<Layout> L = orthogonal_blocks(std::move(m), genus, Layout_class::polycube, &boxes);
     if(!L) return fail("the polycube makes no layout of boxes: " + boxes);
+    L->remeshed = attempt.remeshed_edge > 0.;
     return L;
   }
 

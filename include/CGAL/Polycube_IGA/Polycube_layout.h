@@ -124,8 +124,12 @@ struct Polycube_layout
   /// The input's faces pointed into the solid, so `mesh` is the input turned over (surface
   /// patches are counter-clockwise seen from outside whichever way the input points).
   bool turned_outwards = false;
+  /// `mesh` is a copy of the input remeshed for its polycube map (a CAD part with 45-degree
+  /// features, internal::remeshed_for_labels()): the same surface, none of its vertices
+  /// the input's.
+  bool remeshed = false;
   /// The surface the layout lives on; carries "v:input_index"/"f:input_index" when built
-  /// from an input file (refinement vertices get -1 as input index).
+  /// from an input file (refinement vertices get -1 as input index; all of a remeshed one's).
   Mesh mesh;
   std::vector<vertex_descriptor> nodes;
   std::vector<Arc> arcs;

@@ -174,7 +174,8 @@ inline void write_indented_json(std::ostream& os, const std::string& s)
 
 /// \ingroup PkgPolycubeIGARef
 /// Writes the layout as one JSON object (keys in this order): `class` (layout_class_name),
-/// `genus`, `boundary_loops`, `pants`, `turned_outwards` (the input's faces pointed inwards);
+/// `genus`, `boundary_loops`, `pants`, `turned_outwards` (the input's faces pointed inwards),
+/// `remeshed` (the surface a remeshed copy of the input, Polycube_layout::remeshed);
 /// `nodes` [{`vertex`, `input_vertex` (from the mesh's
 /// "v:input_index" property, -1 without it or for a refinement vertex), `interior` (a box
 /// corner inside the solid, Polycube_layout::is_interior_node()), `point` [x,y,z]}];
@@ -202,7 +203,8 @@ void write_layout_json(std::ostream& os, const Polycube_layout<P>& L, bool prett
     .member("genus", L.genus)
     .member("boundary_loops", Ull(L.boundary_loops))
     .member("pants", Ull(L.number_of_pants))
-    .member("turned_outwards", L.turned_outwards);
+    .member("turned_outwards", L.turned_outwards)
+    .member("remeshed", L.remeshed);
 
   w.key("nodes").begin_array();
   for(auto v : L.nodes) {

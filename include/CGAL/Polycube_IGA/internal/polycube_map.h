@@ -21,6 +21,7 @@
 #include <CGAL/Polycube_IGA/internal/mesh_pieces.h>
 #include <CGAL/Polycube_IGA/internal/min_cut.h>
 #include <CGAL/Polycube_IGA/internal/orthogonal_grid.h>
+#include <CGAL/Polycube_IGA/internal/tied_labels.h>
 #include <CGAL/Polycube_IGA/internal/triangle_projection.h>
 
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -45,13 +46,6 @@
 namespace CGAL {
 namespace Polycube_IGA {
 namespace internal {
-
-/// Labels are 2 k + s: axis k of the frame, s = 0 along it, 1 against it.
-inline Eigen::Vector3d label_direction(const Eigen::Matrix3d& frame, int label)
-{
-  const Eigen::Vector3d a = frame.row(label / 2).transpose();
-  return label % 2 ? Eigen::Vector3d(-a) : a;
-}
 
 /// A frame's fit to a surface: the area-weighted mean of each normal's largest component
 /// (1 for an orthogonal polyhedron, about 0.83 for a sphere in any frame).
@@ -816,17 +810,25 @@ std::optional<std::vector<Eigen::Vector3d>> polycube_positions(const CGAL::Surfa
 /// 0.02: eight.off 39 -> 10 -> 3, ring4.off 25 -> 10 -> 5, chain5.off 22 -> 3 -> 13,
 /// rotor.off 34 -> 14 -> 65, anchor.off 438 -> 239 -> 265, fandisk.off 25 -> 169 -> 190,
 /// femur.off 4468 -> 228 -> 203 (weights 0.03 to 0.06, on five of them, made one more:
-/// torus.obj at 0.06). A refused map costs more, by up to 47 times the nearest labels'
-/// alone (wheel3.off 0.08 -> 3.9 s, chain6.off 0.5 -> 8.8 s, anchor.off 1.2 -> 3.1 s;
-/// `polycube_iga_benchmark polycube`); a map that is a polycube on them costs the same.
+/// torus.obj at 0.06). Last, tied_labels() on remeshed copies (remeshed_for_labels(), at
+/// edges of 2%, 2.5% and 3% of the diagonal, its normals as they are and smoothed twice,
+/// smoothed_face_normals()): a CAD part's 45-degree features (anchor.off, 438 faces turned
+/// on its nearest labels, is a polycube on its copy at 2%). A refused map costs more, by up
+/// to 47 times the nearest labels' alone (wheel3.off 0.08 -> 3.9 s, chain6.off 0.5 -> 8.8
+/// s, anchor.off 1.2 -> 3.1 s; `polycube_iga_benchmark polycube`); a map that is a polycube
+/// on them costs the same.
 template <class P>
 struct Polycube_map_attempt
 {
-  CGAL::Surface_mesh<P> mesh; ///< the input with the edges between borders split
+  CGAL::Surface_mesh<P> mesh; ///< the input (or its remeshed copy) with the edges between borders split
   Eigen::Matrix3d frame;      ///< rows: the axes
   double alignment = 0.;      ///< frame_alignment() of the input's faces
   std::vector<int> label;     ///< by face of `mesh`: axis 2k (+) or 2k + 1 (-)
   double border_weight = 0.;  ///< 0: the nearest labels; else expansion_labels()' weight
+  /// 0: `mesh` is the input's; else tied_labels() on its copy remeshed to edges of this
+  /// fraction of the diagonal (its vertices are not the input's)
+  double remeshed_edge = 0.;
+  int normal_smoothing = 0; ///< smoothed_face_normals() iterations for tied_labels()
   int charts = 0;             ///< label_charts() count
   std::optional<std::vector<Eigen::Vector3d>> position; ///< world coordinates, by vertex
   std::vector<Eigen::Vector3d> refused_position; ///< world coordinates, when `position` is empty
@@ -836,6 +838,24 @@ struct Polycube_map_attempt
   /// The faces the refused deformation left turned over or flat (0 for a polycube).
   std::size_t faces_turned() const { return std::size_t(std::count(turned.begin(), turned.end(), true)); }
 };
+
+/// The rest of an attempt once its labels are set: the edges between borders split, the
+/// charts counted, the polycube positions or the refusal with its turned faces.
+template <class P>
+void deform_to_labels(Polycube_map_attempt<P>& a)
+{
+  const Eigen::Matrix3d& frame = a.frame;
+  split_edges_between_borders(a.mesh, a.label);
+  label_charts(a.mesh, a.label, &a.charts);
+  std::vector<Eigen::Vector3d> refused;
+  a.position = polycube_positions(a.mesh, frame, a.label, 0.05, &a.why, &refused);
+  if(!a.position && !refused.empty()) {
+    a.turned.assign(num_faces(a.mesh), false);
+    for(auto f : turned_faces(a.mesh, a.label, refused)) a.turned[std::size_t(f)] = true;
+    for(auto& p : refused) p = frame.transpose() * p;
+    a.refused_position = std::move(refused);
+  }
+}
 
 /// One polycube map of `input` in `frame` (its faces' `normal` and `area` given): the nearest
 /// labels when `border_weight` is 0, else expansion_labels() at that weight.
@@ -851,18 +871,34 @@ Polycube_map_attempt<P> polycube_map_on_labels(const CGAL::Surface_mesh<P>& inpu
   a.mesh = input;
   a.label = border_weight > 0. ? expansion_labels(a.mesh, frame, normal, area, border_weight)
                                : polycube_labels(a.mesh, frame, normal, area, 0.);
-  split_edges_between_borders(a.mesh, a.label);
-  label_charts(a.mesh, a.label, &a.charts);
-  std::vector<Eigen::Vector3d> refused;
-  a.position = polycube_positions(a.mesh, frame, a.label, 0.05, &a.why, &refused);
-  if(!a.position && !refused.empty()) {
-    a.turned.assign(num_faces(a.mesh), false);
-    for(auto f : turned_faces(a.mesh, a.label, refused)) a.turned[std::size_t(f)] = true;
-    for(auto& p : refused) p = frame.transpose() * p;
-    a.refused_position = std::move(refused);
-  }
+  deform_to_labels(a);
   return a;
 }
+
+/// The map on a copy of `input` remeshed to edges of `edge_fraction` of its diagonal, its
+/// tied faces decided by tied_labels() (normals smoothed `smoothing` times for that), small
+/// charts merged as for the nearest labels.
+template <class P>
+Polycube_map_attempt<P> polycube_map_on_tied_labels(const CGAL::Surface_mesh<P>& input, const Eigen::Matrix3d& frame,
+                                                    double alignment, double edge_fraction, int smoothing)
+{
+  Polycube_map_attempt<P> a;
+  a.frame = frame;
+  a.alignment = alignment;
+  a.remeshed_edge = edge_fraction;
+  a.normal_smoothing = smoothing;
+  a.mesh = remeshed_for_labels(input, edge_fraction);
+  {
+    const auto [normal, area] = face_normals_and_areas(a.mesh);
+    const std::vector<Eigen::Vector3d> smooth = smoothed_face_normals(a.mesh, normal, area, smoothing);
+    a.label = tied_labels(a.mesh, frame, smooth, polycube_labels(a.mesh, frame, smooth, area, 0., 0.));
+  }
+  const auto [normal, area] = face_normals_and_areas(a.mesh);
+  merge_small_charts(a.mesh, area, a.label, 2e-3);
+  deform_to_labels(a);
+  return a;
+}
+
 
 template <class P>
 Polycube_map_attempt<P> polycube_map_attempt(const CGAL::Surface_mesh<P>& input)
@@ -876,6 +912,15 @@ Polycube_map_attempt<P> polycube_map_attempt(const CGAL::Surface_mesh<P>& input)
     if(smoothed.position) return smoothed;
     std::ostringstream said;
     said << "; with graph-cut labels at border weight " << w << ": " << smoothed.why;
+    nearest.why += said.str();
+  }
+  if(nearest.position) return nearest;
+  for(const auto& [edge, smoothing] : {std::pair<double, int>{0.02, 0}, {0.025, 2}, {0.02, 2}, {0.025, 0}, {0.03, 2}}) {
+    Polycube_map_attempt<P> tied = polycube_map_on_tied_labels(input, frame, nearest.alignment, edge, smoothing);
+    if(tied.position) return tied;
+    std::ostringstream said;
+    said << "; with tied faces decided on a copy remeshed to " << 100. * edge << "% of the diagonal" << (smoothing ? ", normals smoothed" : "")
+         << ": " << tied.why;
     nearest.why += said.str();
   }
   return nearest;
