@@ -811,12 +811,13 @@ std::optional<std::vector<Eigen::Vector3d>> polycube_positions(const CGAL::Surfa
 /// rotor.off 34 -> 14 -> 65, anchor.off 438 -> 239 -> 265, fandisk.off 25 -> 169 -> 190,
 /// femur.off 4468 -> 228 -> 203 (weights 0.03 to 0.06, on five of them, made one more:
 /// torus.obj at 0.06). Last, tied_labels() on remeshed copies (remeshed_for_labels(), at
-/// edges of 2%, 2.5% and 3% of the diagonal, its normals as they are and smoothed twice,
-/// smoothed_face_normals()): a CAD part's 45-degree features (anchor.off, 438 faces turned
-/// on its nearest labels, is a polycube on its copy at 2%). A refused map costs more, by up
-/// to 47 times the nearest labels' alone (wheel3.off 0.08 -> 3.9 s, chain6.off 0.5 -> 8.8
-/// s, anchor.off 1.2 -> 3.1 s; `polycube_iga_benchmark polycube`); a map that is a polycube
-/// on them costs the same.
+/// edges of 2%, 2.5% and 3% of the diagonal, the normals as they are and smoothed twice,
+/// smoothed_face_normals()), made for a CAD part's 45-degree features: 10 more of the 49
+/// are polycubes so (anchor.off, 438 faces turned on its nearest labels, on its copy at 2.5%
+/// with smoothed normals; chain5, chain6, plate5, plate6, and five benchmark shapes). A
+/// refused map costs more, by 3 to 57 times the nearest labels' alone (wheel3.off 0.07 ->
+/// 3.6 s; 3torus.off, 46 faces, 0.01 -> 21 s, remeshed five times;
+/// `polycube_iga_benchmark polycube`); a map that is a polycube on them costs the same.
 template <class P>
 struct Polycube_map_attempt
 {
