@@ -909,6 +909,13 @@ TEST_CASE("a CAD part's 45-degree boss, bore and groove are decided by their cre
   CHECK(ridge.size() == 2);
   CHECK(ridge[label_of(Eigen::Vector3d(-1., 0., 0.))] > 0);
   CHECK(ridge[label_of(Eigen::Vector3d(0., 0., 1.))] > 0);
+  // The end face and the groove's floor, parallel planes tied between +x and +z, take one
+  // label together.
+  std::set<int> end_face;
+  for(auto f : faces(a.mesh))
+    if(PI::internal::unit_face_normal(a.mesh, f).dot(Eigen::Vector3d(1., 0., 1.).normalized()) > std::cos(2. * CGAL_PI / 180.))
+      end_face.insert(a.label[std::size_t(f)]);
+  CHECK(end_face.size() == 1);
   const Layout L = PI::Cuboid_decomposition<Mesh>()(m, PI::parameters::polycube_map(true));
   CHECK(L.layout_class == PI::Layout_class::polycube);
   CHECK(L.genus == 4);
