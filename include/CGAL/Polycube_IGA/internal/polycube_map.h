@@ -18,6 +18,7 @@
 
 #include <CGAL/Polycube_IGA/internal/bbox_diagonal.h>
 #include <CGAL/Polycube_IGA/internal/edge_length.h>
+#include <CGAL/Polycube_IGA/internal/label_charts.h>
 #include <CGAL/Polycube_IGA/internal/mesh_pieces.h>
 #include <CGAL/Polycube_IGA/internal/min_cut.h>
 #include <CGAL/Polycube_IGA/internal/orthogonal_grid.h>
@@ -183,33 +184,6 @@ std::pair<double, bool> polycube_alignment(const Mesh& m, double angle_degrees =
   bool aligned = true;
   for(const Eigen::Vector3d& n : normal) aligned = aligned && (n.squaredNorm() == 0. || (frame * n).cwiseAbs().maxCoeff() >= along);
   return {frame_alignment(frame, normal, area), aligned};
-}
-
-/// The charts of a labelling: connected sets of faces of one label across edges. Returns
-/// each face's chart.
-template <class Mesh>
-std::vector<int> label_charts(const Mesh& m, const std::vector<int>& label, int* count = nullptr)
-{
-  std::vector<int> chart(num_faces(m), -1);
-  int n = 0;
-  for(auto f0 : faces(m)) {
-    if(chart[std::size_t(f0)] >= 0) continue;
-    std::vector<typename Mesh::Face_index> stack{f0};
-    chart[std::size_t(f0)] = n;
-    while(!stack.empty()) {
-      const auto f = stack.back();
-      stack.pop_back();
-      for(auto h : halfedges_around_face(halfedge(f, m), m)) {
-        const auto g = face(opposite(h, m), m);
-        if(g == Mesh::null_face() || chart[std::size_t(g)] >= 0 || label[std::size_t(g)] != label[std::size_t(f)]) continue;
-        chart[std::size_t(g)] = n;
-        stack.push_back(g);
-      }
-    }
-    ++n;
-  }
-  if(count) *count = n;
-  return chart;
 }
 
 /// Gives each chart of `label` smaller than `minimum_chart` of the surface's area to the
@@ -899,7 +873,6 @@ Polycube_map_attempt<P> polycube_map_on_tied_labels(const CGAL::Surface_mesh<P>&
   deform_to_labels(a);
   return a;
 }
-
 
 template <class P>
 Polycube_map_attempt<P> polycube_map_attempt(const CGAL::Surface_mesh<P>& input)

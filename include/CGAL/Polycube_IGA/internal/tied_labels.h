@@ -15,6 +15,7 @@
 #ifndef CGAL_POLYCUBE_IGA_INTERNAL_TIED_LABELS_H
 #define CGAL_POLYCUBE_IGA_INTERNAL_TIED_LABELS_H
 
+#include <CGAL/Polycube_IGA/internal/label_charts.h>
 #include <CGAL/Polycube_IGA/internal/mesh_pieces.h>
 #include <CGAL/Polycube_IGA/internal/orthogonal_grid.h>
 
@@ -32,13 +33,6 @@
 namespace CGAL {
 namespace Polycube_IGA {
 namespace internal {
-
-/// Labels are 2 k + s: axis k of the frame, s = 0 along it, 1 against it.
-inline Eigen::Vector3d label_direction(const Eigen::Matrix3d& frame, int label)
-{
-  const Eigen::Vector3d a = frame.row(label / 2).transpose();
-  return label % 2 ? Eigen::Vector3d(-a) : a;
-}
 
 /// A copy of the closed surface `m` remeshed isotropically to edges of `edge_fraction` of
 /// its bounding-box diagonal, its sharp edges (over 30 degrees) kept as constraints, so that
@@ -138,30 +132,33 @@ std::vector<int> tied_labels(CGAL::Surface_mesh<P>& m, const Eigen::Matrix3d& fr
     Eigen::Vector3d axis = Eigen::Vector3d::Zero(); // a cylinder's, else zero
     int decided = -2; // -2 open, -1 cut by its plane, else its label
   };
-  std::vector<Region> regions;
-  std::vector<int> region(nf, -1);
-  for(auto f0 : faces(m)) {
-    if(pair[std::size_t(f0)] < 0 || region[std::size_t(f0)] >= 0) continue;
-    const int r = int(regions.size());
-    std::vector<F> stack{f0}, members{f0};
-    region[std::size_t(f0)] = r;
-    while(!stack.empty()) {
-      const F f = stack.back();
-      stack.pop_back();
-      for(auto h : halfedges_around_face(halfedge(f, m), m)) {
-        const F g = face(opposite(h, m), m);
-        if(g == Mesh::null_face() || region[std::size_t(g)] >= 0 || pair[std::size_t(g)] != pair[std::size_t(f0)]) continue;
-        region[std::size_t(g)] = r;
-        stack.push_back(g);
-        members.push_back(g);
+  // The regions: the charts of `pair` among tied faces, numbered in face order, each with
+  // its faces in index order.
+  std::vector<int> region = label_charts(m, pair);
+  std::vector<std::vector<F>> members;
+  {
+    std::vector<int> number;
+    for(auto f : faces(m)) {
+      int& r = region[std::size_t(f)];
+      if(pair[std::size_t(f)] < 0) {
+        r = -1;
+        continue;
       }
+      if(std::size_t(r) >= number.size()) number.resize(std::size_t(r) + 1, -1);
+      if(number[std::size_t(r)] < 0) number[std::size_t(r)] = int(members.size()), members.emplace_back();
+      r = number[std::size_t(r)];
+      members[std::size_t(r)].push_back(f);
     }
+  }
+  std::vector<Region> regions;
+  for(std::size_t r = 0; r < members.size(); ++r) {
+    const F f0 = members[r].front();
     Region R;
     R.label = {pair[std::size_t(f0)] / 6, pair[std::size_t(f0)] % 6};
     const Eigen::Vector3d da = label_direction(frame, R.label[0]), db = label_direction(frame, R.label[1]);
     double a0 = 1e300, a1 = -1e300, b0 = 1e300, b1 = -1e300, turning = 0.;
     Eigen::Matrix3d tensor = Eigen::Matrix3d::Zero();
-    for(F f : members) {
+    for(F f : members[r]) {
       const std::size_t i = std::size_t(f);
       R.area += CGAL::to_double(CGAL::Polygon_mesh_processing::face_area(f, m));
       R.mean_normal += normal[i];
@@ -173,7 +170,7 @@ std::vector<int> tied_labels(CGAL::Surface_mesh<P>& m, const Eigen::Matrix3d& fr
       // Convexity: each edge's signed turning times its length, inner edges once.
       for(auto h : halfedges_around_face(halfedge(f, m), m)) {
         const F g = face(opposite(h, m), m);
-        if(g == Mesh::null_face() || (region[std::size_t(g)] == r && g < f)) continue;
+        if(g == Mesh::null_face() || (region[std::size_t(g)] == int(r) && g < f)) continue;
         const Eigen::Vector3d &n1 = normal[i], &n2 = normal[std::size_t(g)], d = point(target(h, m)) - point(source(h, m));
         const double angle = std::acos(std::clamp(n1.dot(n2), -1., 1.));
         turning += (n1.cross(n2).dot(d) > 0. ? angle : -angle) * d.norm();
@@ -183,7 +180,7 @@ std::vector<int> tied_labels(CGAL::Surface_mesh<P>& m, const Eigen::Matrix3d& fr
     R.concave = turning < 0.;
     R.mean_normal.normalize();
     double least = 1.;
-    for(F f : members) least = std::min(least, normal[std::size_t(f)].dot(R.mean_normal));
+    for(F f : members[r]) least = std::min(least, normal[std::size_t(f)].dot(R.mean_normal));
     R.planar = least > std::cos(3. * CGAL_PI / 180.);
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(tensor);
     const Eigen::Vector3d ev = eigen.eigenvalues();
@@ -208,8 +205,8 @@ std::vector<int> tied_labels(CGAL::Surface_mesh<P>& m, const Eigen::Matrix3d& fr
       if(regions[std::size_t(r)].planar && regions[std::size_t(r)].decided == -2 && (big < 0 || regions[std::size_t(r)].area > regions[std::size_t(big)].area)) big = r;
     if(big < 0) break;
     std::array<double, 2> on{};
-    for(auto f : faces(m))
-      if(region[std::size_t(f)] == big) on[side(big, centroid(f)) >= 0. ? 0 : 1] += CGAL::to_double(CGAL::Polygon_mesh_processing::face_area(f, m));
+    for(F f : members[std::size_t(big)])
+      on[side(big, centroid(f)) >= 0. ? 0 : 1] += CGAL::to_double(CGAL::Polygon_mesh_processing::face_area(f, m));
     const int L = regions[std::size_t(big)].label[on[0] >= on[1] ? 0 : 1];
     for(auto& R : regions)
       if(R.planar && R.decided == -2 && R.mean_normal.dot(regions[std::size_t(big)].mean_normal) > std::cos(3. * CGAL_PI / 180.)) R.decided = L;
@@ -218,8 +215,7 @@ std::vector<int> tied_labels(CGAL::Surface_mesh<P>& m, const Eigen::Matrix3d& fr
   auto allowed = [&](int r) {
     const Region& R = regions[std::size_t(r)];
     int ok = 3;
-    for(auto f : faces(m)) {
-      if(region[std::size_t(f)] != r) continue;
+    for(F f : members[std::size_t(r)]) {
       for(auto h : halfedges_around_face(halfedge(f, m), m)) {
         const F g = face(opposite(h, m), m);
         if(g == Mesh::null_face() || region[std::size_t(g)] == r) continue;
