@@ -765,11 +765,13 @@ std::optional<std::vector<Eigen::Vector3d>> polycube_positions(const CGAL::Surfa
   std::vector<Eigen::Vector3d> q;
   if(!snapped[0].empty() && !snapped[1].empty() && !snapped[2].empty()) q = positions(snapped);
   // Axis k of `c` snapped again (its levels as `c` has them) at the first of `fractions` of
-  // `snap` that leaves a polycube, `q` its positions; else both unchanged.
+  // `snap` that leaves a polycube, `q` its positions; else both unchanged. `c` is always a
+  // polycube and `q` its positions, so a snap that merges nothing more needs no check.
   auto snap_axis = [&](std::array<std::vector<double>, 3>& c, int k, std::initializer_list<double> fractions, bool across_ways) {
     for(double fraction : fractions) {
       std::optional<std::vector<double>> x = polycube_axis(m, x0, offset, label, k, &c[std::size_t(k)], fraction * snap * extent(k), across_ways);
       if(!x) continue;
+      if(*x == c[std::size_t(k)]) return;
       std::array<std::vector<double>, 3> t = c;
       t[std::size_t(k)] = std::move(*x);
       std::vector<Eigen::Vector3d> p = positions(t);
